@@ -1,0 +1,19 @@
+# Every dependency comes from a Debian 12 package (cmake/install_deps.sh installs them); nothing is
+# downloaded at build time. Each is wrapped in an imported target.
+find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+
+if(RIGIDLAB_LUA)
+  find_package(PkgConfig REQUIRED)
+  pkg_check_modules(LUA REQUIRED IMPORTED_TARGET lua5.4)
+  find_package(sol2 3.5 REQUIRED)
+endif()
+
+if(RIGIDLAB_SANDBOX)
+  find_package(SDL2 REQUIRED)
+  find_package(OpenGL REQUIRED COMPONENTS OpenGL)
+  pkg_check_modules(IMGUI REQUIRED IMPORTED_TARGET imgui)
+endif()
+
+if(RIGIDLAB_TESTS)
+  find_package(doctest REQUIRED)
+endif()

@@ -1,0 +1,30 @@
+// The drawing interface the core talks to. The sandbox implements it with OpenGL; the core never
+// calls a graphics API. Coordinates are world metres.
+#pragma once
+
+#include <span>
+
+#include "rigidlab/math.h"
+
+namespace rigidlab {
+
+struct Color {
+  float r = 1, g = 1, b = 1, a = 1;
+};
+
+class DebugDraw {
+ public:
+  virtual ~DebugDraw() = default;
+
+  virtual void drawPolygon(std::span<const Vec2> vertices, const Color& fill, const Color& outline) = 0;
+  // A disc with a radius line at `angle`, so rotation is visible.
+  virtual void drawCircle(const Vec2& center, double radius, double angle, const Color& fill, const Color& outline) = 0;
+  virtual void drawSegment(const Vec2& a, const Vec2& b, const Color& color) = 0;
+  virtual void drawPoint(const Vec2& p, float size_pixels, const Color& color) = 0;
+
+  // Composite shapes built from segments; an implementation may override them.
+  virtual void drawSpring(const Vec2& a, const Vec2& b, double width, const Color& color);
+  virtual void drawArrow(const Vec2& from, const Vec2& to, const Color& color);
+};
+
+}  // namespace rigidlab

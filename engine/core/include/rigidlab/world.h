@@ -1,0 +1,176 @@
+// The world: owns bodies and forces and advances them in time (origin.md §6, Algorithm 4).
+//
+//   World world;                                   // defaults: WorldDef below
+//   BodyDef def; def.shape = makeCircle(0.5); def.position = {0, 5};
+//   BodyId ball = world.createBody(def);
+//   world.step(1.0 / 60.0);
+//
+// The step pipeline is in engine/core/src/world.cpp (World::step).
+#pragma once
+
+#include <limits>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "rigidlab/body.h"
+#include "rigidlab/debug_draw.h"
+#include "rigidlab/force.h"
+#include "rigidlab/forces.h"
+
+namespace rigidlab {
+
+// Time integrators for the non-contact forces (origin.md §5; accuracy.md §2).
+enum class Integrator {
+  ExplicitEuler,      // "euler":  x += h v_n,     v += h a_n           order 1, gains energy
+  SemiImplicitEuler,  // "semi_implicit_euler": v += h a_n, x += h v_{n+1}   order 1, symplectic
+  RungeKutta4,        // "rk4": classic four-stage Runge–Kutta, forces at every stage   order 4
+};
+std::string_view integratorName(Integrator);
+std::optional<Integrator> parseIntegrator(std::string_view name);
+std::string integratorNames();  // "euler, semi_implicit_euler, rk4" for error messages
+
+// How penetration left after the velocity solve is removed (origin.md §9).
+enum class PositionCorrection {
+  LinearProjection,  // "linear_projection": move both bodies apart along the normal (the original)
+};
+std::string_view positionCorrectionName(PositionCorrection);
+std::optional<PositionCorrection> parsePositionCorrection(std::string_view name);
+
+struct WorldDef {
+  Vec2 gravity = Vec2(0.0, -9.80665);          // [m/s²], origin.md §1
+  Integrator integrator = Integrator::RungeKutta4;  // origin.md §5: RK4 for all ordinary forces
+  int iterations = 10;                          // velocity iterations of the contact solver, ≥ 1
+  // Start each persisting contact point from last step's impulses (matched by feature id). Off
+  // reproduces the thesis's solver, which starts every step from zero.
+  bool warm_starting = true;
+  PositionCorrection position_correction = PositionCorrection::LinearProjection;
+  // Move each body by the displacement its contact impulses would have caused during the step
+  // (position_correction.cpp), so friction and resting contacts hold positions, not only
+  // velocities. Off reproduces the thesis, where held bodies creep by their gravity travel.
+  bool contact_displacement = true;
+  // Restitution applies only to contacts approaching faster than this, so resting contacts do not
+  // bounce on the g·dt of every step (0.16 m/s at 60 Hz). [m/s] ≥ 0
+  double restitution_threshold = 0.5;
+  // Static friction (f_s) is used when the tangential speed at the start of the step is below this,
+  // dynamic friction (f_d) otherwise (origin.md §10, the "small ε"). [m/s] ≥ 0
+  double static_friction_speed = 0.01;
+};
+
+// One contact manifold, for drawing and tests. Points are world coordinates; separation < 0 means
+// overlap; impulses are the accumulated values of the last solve [N·s].
+struct ContactInfo {
+  BodyId a, b;
+  Vec2 normal = Vec2::Zero();  // unit, from a to b
+  int count = 0;
+  Vec2 points[2] = {Vec2::Zero(), Vec2::Zero()};
+  double separations[2] = {0, 0};
+  double normal_impulses[2] = {0, 0};
+  double tangent_impulses[2] = {0, 0};
+  uint32_t ids[2] = {0, 0};  // feature ids, stable while the same features touch
+};
+
+// Wall-clock cost and counts of the last step, per stage.
+struct StepStats {
+  double integrate_ms = 0, broad_phase_ms = 0, narrow_phase_ms = 0, solve_ms = 0, correct_ms = 0,
+         finish_ms = 0;
+  double forces_ms = 0;     // part of integrate_ms spent in Force::evaluate
+  int bodies = 0, dynamic_bodies = 0, forces = 0;
+  int pairs = 0, contacts = 0, contact_points = 0;
+  long force_evaluations = 0;  // calls of Force::evaluate in this step
+  double total_ms() const { return integrate_ms + broad_phase_ms + narrow_phase_ms + solve_ms + correct_ms + finish_ms; }
+};
+
+struct DrawOptions {
+  bool shapes = true, springs = true, forces = true;
+  bool contacts = false, normals = false, impulses = false, aabbs = false, centers = false, velocities = false;
+  BodyId selected;
+  // If not empty: the transform to draw for each body slot (indexed by BodyId::index), e.g.
+  // interpolated between the last two steps by the sandbox's fixed-step loop.
+  std::span<const Transform> transforms;
+};
+
+struct WorldImpl;
+
+class World {
+ public:
+  explicit World(const WorldDef& def = {});
+  ~World();
+  World(World&&) noexcept;
+  World& operator=(World&&) noexcept;
+
+  // --- settings (validated; InputError on a bad value)
+  const WorldDef& settings() const;
+  void setGravity(const Vec2& g);
+  void setIntegrator(Integrator integrator);
+  void setIterations(int iterations);
+  void setWarmStarting(bool on);
+  void setContactDisplacement(bool on);
+  void setPositionCorrection(PositionCorrection pc);
+  void setRestitutionThreshold(double speed);
+  void setStaticFrictionSpeed(double speed);
+
+  // --- bodies
+  BodyId createBody(const BodyDef& def);  // InputError names the bad field and value
+  void destroyBody(BodyId id);            // also removes the forces attached to it
+  bool isValid(BodyId id) const;
+  const Body& body(BodyId id) const;      // InputError("body", ...) for a stale handle
+  std::vector<BodyId> bodyIds() const;    // live bodies in creation order
+  int bodyCount() const;
+  std::optional<BodyId> findBody(std::string_view name) const;  // first body with this name
+
+  void setTransform(BodyId id, const Vec2& position, double angle);
+  void setVelocity(BodyId id, const Vec2& velocity);
+  void setAngularVelocity(BodyId id, double angular_velocity);
+  void setType(BodyId id, BodyType type);  // static bodies have their velocity zeroed
+  void setMass(BodyId id, double mass);    // keeps the shape; density = mass / area
+  void setMaterial(BodyId id, const Material& material);
+  void setName(BodyId id, std::string name);
+  // Instant change of momentum by the impulse J at a world point (origin.md §1, J = Δp).
+  void applyImpulse(BodyId id, const Vec2& impulse, const Vec2& world_point);
+
+  // --- forces. `duration` [s]: the force acts for that much simulated time from now and is removed
+  // at the end of the step in which it runs out (origin.md §6); infinity = permanent. A step that
+  // straddles the end is split there, so the force acts for exactly `duration`.
+  static constexpr double kForever = std::numeric_limits<double>::infinity();
+  ForceId addForce(std::unique_ptr<Force> force, BodyId a, BodyId b = {}, double duration = kForever);
+  ForceId addSpring(const SpringDef& def, double duration = kForever);
+  ForceId addDamper(const DamperDef& def, double duration = kForever);
+  void removeForce(ForceId id);
+  bool isValid(ForceId id) const;
+  Force& force(ForceId id);
+  const Force& force(ForceId id) const;
+  BodyId forceBodyA(ForceId id) const;
+  BodyId forceBodyB(ForceId id) const;
+  double forceTimeLeft(ForceId id) const;  // [s], infinity for permanent forces
+  std::vector<ForceId> forceIds() const;   // live forces in creation order
+  // State of a body as forces see it.
+  BodyState bodyState(BodyId id) const;
+
+  // --- simulation
+  // Advances by dt [s] > 0: integrate → find pairs → narrow phase → solve contacts → correct
+  // positions → expire forces. Edits requested while a step runs (from inside a force) throw.
+  void step(double dt);
+  double time() const;             // simulated time [s]
+  long stepCount() const;
+  const StepStats& stats() const;  // of the last step
+
+  // Energies [J] (origin.md §12 experiment 2): kinetic Σ ½ m v² + ½ I ω²; potential of gravity
+  // −m g·c (zero at the world origin) plus what the forces store (springs ½ k x²).
+  double kineticEnergy() const;
+  double potentialEnergy() const;
+  double gravityPotentialEnergy() const;
+
+  // Topmost body whose shape contains the world point (origin.md §7 point-in-shape), for picking.
+  std::optional<BodyId> bodyAt(const Vec2& point) const;
+  std::vector<ContactInfo> contacts() const;  // manifolds of the last step
+  void draw(DebugDraw& dd, const DrawOptions& options = {}) const;
+
+ private:
+  std::unique_ptr<WorldImpl> impl_;
+};
+
+}  // namespace rigidlab

@@ -1,0 +1,36 @@
+// Stage 2 of the step: candidate pairs from bounding boxes (origin.md §7).
+#include "broad_phase.h"
+
+#include "stages.h"
+#include "world_impl.h"
+
+namespace rigidlab {
+
+void AllPairsBroadPhase::findPairs(std::span<const Proxy> proxies, std::vector<BodyPair>& pairs) {
+  pairs.clear();
+  const uint32_t n = static_cast<uint32_t>(proxies.size());
+  for (uint32_t i = 0; i < n; ++i) {
+    const Proxy& p = proxies[i];
+    if (!p.active) continue;
+    for (uint32_t j = i + 1; j < n; ++j) {
+      const Proxy& q = proxies[j];
+      if (q.active && !(p.is_static && q.is_static) && p.aabb.overlaps(q.aabb)) pairs.push_back({i, j});
+    }
+  }
+}
+
+void findPairs(WorldImpl& w) {
+  const size_t n = w.bodies.size();
+  w.proxies.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    Proxy& p = w.proxies[i];
+    p.active = w.alive[i];
+    if (!p.active) continue;
+    const Body& b = w.bodies[i];
+    p.is_static = b.isStatic();
+    p.aabb = computeAabb(b.shape, b.xf);
+  }
+  w.broad_phase->findPairs(w.proxies, w.pairs);
+}
+
+}  // namespace rigidlab

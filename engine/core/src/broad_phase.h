@@ -1,0 +1,39 @@
+// Broad phase: which pairs of bodies might touch. It sees only bounding boxes. Pairs come out in a
+// deterministic order (a < b, ascending), static–static pairs never (origin.md §7).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "rigidlab/math.h"
+
+namespace rigidlab {
+
+struct BodyPair {
+  uint32_t a, b;  // body slots, a < b
+};
+
+// What the broad phase knows about one body slot.
+struct Proxy {
+  Aabb aabb;
+  bool is_static = false;
+  bool active = false;  // false for destroyed slots
+};
+
+class BroadPhase {
+ public:
+  virtual ~BroadPhase() = default;
+  // Replaces `pairs` with every pair of active proxies whose boxes overlap, skipping static–static.
+  virtual void findPairs(std::span<const Proxy> proxies, std::vector<BodyPair>& pairs) = 0;
+};
+
+// The thesis's naive test of every pair (origin.md §7), with a bounding-box check per pair. O(n²):
+// fine for a few hundred bodies.
+class AllPairsBroadPhase final : public BroadPhase {
+ public:
+  void findPairs(std::span<const Proxy> proxies, std::vector<BodyPair>& pairs) override;
+};
+
+}  // namespace rigidlab

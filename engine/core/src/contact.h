@@ -1,0 +1,35 @@
+// Contact constraints: one per touching pair, up to two points, solved by sequential impulses
+// (contact_solver.cpp) and then separated (position_correction.cpp).
+#pragma once
+
+#include <cstdint>
+
+#include "manifold.h"
+
+namespace rigidlab {
+
+struct ContactPoint {
+  Vec2 point = Vec2::Zero();      // world [m]
+  double separation = 0.0;        // [m] < 0 overlap
+  uint32_t id = 0;                // feature id (manifold.h)
+  Vec2 ra = Vec2::Zero();         // from A's centre of mass to the point [m]
+  Vec2 rb = Vec2::Zero();         // from B's centre of mass to the point [m]
+  double normal_mass = 0.0;       // 1 / (1/m_A + 1/m_B + (r_A×n)²/I_A + (r_B×n)²/I_B)   (origin.md §8)
+  double tangent_mass = 0.0;      // same with the tangent t                         (origin.md §10)
+  double target_velocity = 0.0;   // normal relative velocity the solver aims for (restitution) [m/s]
+  double friction = 0.0;          // f_s or f_d, chosen from the slip at the start of the step
+  double normal_impulse = 0.0;    // accumulated, ≥ 0 [N·s]
+  double tangent_impulse = 0.0;   // accumulated, |·| ≤ friction · normal_impulse [N·s]
+};
+
+struct Contact {
+  uint32_t a = 0, b = 0;  // body slots
+  Vec2 normal = Vec2::Zero();
+  int count = 0;
+  ContactPoint points[2];
+  double restitution = 0.0;
+  double friction = 0.0;         // combined dynamic friction
+  double static_friction = 0.0;  // combined static friction
+};
+
+}  // namespace rigidlab

@@ -1,0 +1,111 @@
+// Drawing the world through the DebugDraw interface (the sandbox implements it with OpenGL).
+#include "rigidlab/debug_draw.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "world_impl.h"
+
+namespace rigidlab {
+
+void DebugDraw::drawSpring(const Vec2& a, const Vec2& b, double width, const Color& color) {
+  // A zigzag with straight ends; the number of coils is fixed so a stretched spring looks stretched.
+  const Vec2 d = b - a;
+  const double length = d.norm();
+  if (length == 0.0) return;
+  const Vec2 u = d / length, side = perp(u) * (0.5 * width);
+  constexpr int kCoils = 8;
+  const double lead = 0.1 * length;
+  Vec2 prev = a + u * lead;
+  drawSegment(a, prev, color);
+  for (int i = 0; i < 2 * kCoils; ++i) {
+    const double s = lead + (length - 2 * lead) * (i + 0.5) / (2 * kCoils);
+    const Vec2 p = a + u * s + (i % 2 == 0 ? side : Vec2(-side));
+    drawSegment(prev, p, color);
+    prev = p;
+  }
+  const Vec2 end = b - u * lead;
+  drawSegment(prev, end, color);
+  drawSegment(end, b, color);
+}
+
+void DebugDraw::drawArrow(const Vec2& from, const Vec2& to, const Color& color) {
+  drawSegment(from, to, color);
+  const Vec2 d = to - from;
+  const double length = d.norm();
+  if (length == 0.0) return;
+  const Vec2 u = d / length;
+  const double head = std::min(0.25, 0.3 * length);
+  drawSegment(to, to - head * u + 0.5 * head * perp(u), color);
+  drawSegment(to, to - head * u - 0.5 * head * perp(u), color);
+}
+
+void World::draw(DebugDraw& dd, const DrawOptions& opt) const {
+  const WorldImpl& w = *impl_;
+  const Color static_fill{0.35f, 0.38f, 0.42f, 1.0f}, static_line{0.6f, 0.65f, 0.7f, 1.0f};
+  const Color dynamic_fill{0.25f, 0.45f, 0.75f, 0.8f}, dynamic_line{0.75f, 0.85f, 1.0f, 1.0f};
+  const Color selected_line{1.0f, 0.85f, 0.2f, 1.0f};
+  const auto transformOf = [&](size_t i) {
+    return i < opt.transforms.size() ? opt.transforms[i] : w.bodies[i].xf;
+  };
+
+  std::vector<Vec2> poly;
+  for (size_t i = 0; i < w.bodies.size(); ++i) {
+    if (!w.alive[i]) continue;
+    const Body& b = w.bodies[i];
+    const Transform xf = transformOf(i);
+    const bool selected = b.id == opt.selected;
+    const Color& fill = b.isStatic() ? static_fill : dynamic_fill;
+    const Color& line = selected ? selected_line : b.isStatic() ? static_line : dynamic_line;
+    if (opt.shapes) {
+      if (b.shape.type == ShapeType::Circle) {
+        const double angle = std::atan2(xf.q.s, xf.q.c);
+        dd.drawCircle(xf.apply(b.shape.center), b.shape.radius, angle, fill, line);
+      } else {
+        poly.clear();
+        for (const Vec2& v : b.shape.vertices) poly.push_back(xf.apply(v));
+        dd.drawPolygon(poly, fill, line);
+      }
+    }
+    if (opt.aabbs) {
+      const Aabb box = computeAabb(b.shape, xf);
+      const Color c{0.8f, 0.3f, 0.8f, 1.0f};
+      const Vec2 lr(box.upper.x(), box.lower.y()), ul(box.lower.x(), box.upper.y());
+      dd.drawSegment(box.lower, lr, c);
+      dd.drawSegment(lr, box.upper, c);
+      dd.drawSegment(box.upper, ul, c);
+      dd.drawSegment(ul, box.lower, c);
+    }
+    const Vec2 center = xf.apply(b.local_center);
+    if (opt.centers) dd.drawPoint(center, 5.0f, {1.0f, 1.0f, 1.0f, 1.0f});
+    if (opt.velocities && !b.isStatic())
+      dd.drawArrow(center, center + b.velocity * 0.25, {0.3f, 1.0f, 0.5f, 1.0f});  // 0.25 s of travel
+  }
+
+  for (const ForceEntry& f : w.forces) {
+    if (!f.alive) continue;
+    const bool is_spring = f.force->kind() == "spring";
+    if ((is_spring && !opt.springs) || (!is_spring && !opt.forces)) continue;
+    const BodyState a = WorldImpl::stateOf(w.bodies[f.a.index]);
+    if (f.b.isNull()) {
+      f.force->draw(dd, a, nullptr);
+    } else {
+      const BodyState b = WorldImpl::stateOf(w.bodies[f.b.index]);
+      f.force->draw(dd, a, &b);
+    }
+  }
+
+  if (opt.contacts || opt.normals || opt.impulses) {
+    for (const Contact& c : w.contacts) {
+      for (int i = 0; i < c.count; ++i) {
+        const ContactPoint& cp = c.points[i];
+        if (opt.contacts) dd.drawPoint(cp.point, 6.0f, {1.0f, 0.3f, 0.3f, 1.0f});
+        if (opt.normals) dd.drawArrow(cp.point, cp.point + 0.3 * c.normal, {1.0f, 1.0f, 0.4f, 1.0f});
+        // Impulse drawn as the momentum change of a 1 kg body: 1 m per 1 N·s.
+        if (opt.impulses) dd.drawSegment(cp.point, cp.point + cp.normal_impulse * c.normal, {1.0f, 0.6f, 0.2f, 1.0f});
+      }
+    }
+  }
+}
+
+}  // namespace rigidlab

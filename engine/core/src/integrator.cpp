@@ -1,0 +1,209 @@
+// Stage 1 of the step: integrate every dynamic body under gravity and the non-contact forces
+// (origin.md §5, §6). The state of body i is y_i = (c_i, θ_i, v_i, ω_i), centre of mass, angle,
+// linear and angular velocity; its derivative is f(t, y) = (v, ω, F/m + g, τ/I).
+//
+//   explicit Euler        c += h v_n,  θ += h ω_n,  v += h a(t_n, y_n),  ω += h α(t_n, y_n)
+//   semi-implicit Euler   v += h a(t_n, y_n), ω += h α(...),  then  c += h v_{n+1},  θ += h ω_{n+1}
+//   RK4                   k1 = f(t, y), k2 = f(t + h/2, y + h k1/2), k3 = f(t + h/2, y + h k2/2),
+//                         k4 = f(t + h, y + h k3),  y += h/6 (k1 + 2 k2 + 2 k3 + k4)
+//
+// RK4 evaluates every state-dependent force at each of its four stages on the stage state of *all*
+// bodies at once (a spring between two bodies sees both ends at the same stage), as the thesis's
+// GetDerivative does (Algorithm 6). Forces that do not depend on the state (gravity, a constant push
+// through the centre of mass) are evaluated once per interval; with only such forces RK4 reduces to
+// the exact constant-acceleration update c += h v + ½ h² a, v += h a.
+//
+// Time-limited forces (origin.md §6): a step that straddles a force's end time is split there, so
+// the force acts for exactly its duration. Without the split every integrator, RK4 included, would
+// be first order on such forces (accuracy.md §3.7).
+#include <algorithm>
+#include <chrono>
+
+#include "stages.h"
+#include "world_impl.h"
+
+namespace rigidlab {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+bool isActive(const ForceEntry& f, double t0) { return f.alive && f.expires_at > t0; }
+
+// Adds the wrenches of the active forces of one class (state-dependent or not), evaluated at time t
+// on w.states, into `out`.
+void evaluateForces(WorldImpl& w, double t0, double t, bool state_dependent, std::vector<Wrench>& out) {
+  const auto start = Clock::now();
+  for (ForceEntry& f : w.forces) {
+    if (!isActive(f, t0) || f.force->dependsOnState() != state_dependent) continue;
+    const BodyState& a = w.states[f.a.index];
+    const BodyState* b = f.b.isNull() ? nullptr : &w.states[f.b.index];
+    ForceOutput result;
+    f.force->evaluate(ForceInput{a, b, t}, result);
+    ++w.stats.force_evaluations;
+    out[f.a.index] += result.a;
+    if (b) out[f.b.index] += result.b;
+  }
+  w.stats.forces_ms += std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// Linear and angular acceleration of body i from its accumulated wrench: a = F/m + g, α = τ/I.
+struct Accel {
+  Vec2 a;
+  double alpha;
+};
+Accel accelerationOf(const WorldImpl& w, uint32_t i, const Wrench& wr) {
+  const Body& b = w.bodies[i];
+  return {wr.force * b.inv_mass + w.def.gravity, wr.torque * b.inv_inertia};
+}
+
+void setStageState(WorldImpl& w, uint32_t i, const Vec2& c, double angle, const Vec2& v, double omega) {
+  BodyState& s = w.states[i];
+  s.center = c;
+  s.angle = angle;
+  s.q = Rot::fromAngle(angle);
+  s.position = c - s.q.apply(w.bodies[i].local_center);
+  s.velocity = v;
+  s.angular_velocity = omega;
+}
+
+bool isMoving(const WorldImpl& w, uint32_t i) { return w.alive[i] && !w.bodies[i].isStatic(); }
+
+void integrateInterval(WorldImpl& w, double t0, double h) {
+  const uint32_t n = static_cast<uint32_t>(w.bodies.size());
+  for (uint32_t i = 0; i < n; ++i)
+    if (w.alive[i]) w.states[i] = WorldImpl::stateOf(w.bodies[i]);
+
+  bool any_dependent = false;
+  std::fill(w.const_wrenches.begin(), w.const_wrenches.end(), Wrench{});
+  for (const ForceEntry& f : w.forces) any_dependent |= isActive(f, t0) && f.force->dependsOnState();
+  evaluateForces(w, t0, t0, false, w.const_wrenches);
+
+  // All forces at time t on the current w.states → w.wrenches.
+  const auto derivative = [&](double t) {
+    std::copy(w.const_wrenches.begin(), w.const_wrenches.end(), w.wrenches.begin());
+    if (any_dependent) evaluateForces(w, t0, t, true, w.wrenches);
+  };
+
+  switch (w.def.integrator) {
+    case Integrator::ExplicitEuler:
+    case Integrator::SemiImplicitEuler: {
+      derivative(t0);
+      const bool semi = w.def.integrator == Integrator::SemiImplicitEuler;
+      for (uint32_t i = 0; i < n; ++i) {
+        if (!isMoving(w, i)) continue;
+        Body& b = w.bodies[i];
+        const Accel acc = accelerationOf(w, i, w.wrenches[i]);
+        if (semi) {
+          b.velocity += h * acc.a;
+          b.angular_velocity += h * acc.alpha;
+          b.center += h * b.velocity;
+          b.angle += h * b.angular_velocity;
+        } else {
+          b.center += h * b.velocity;
+          b.angle += h * b.angular_velocity;
+          b.velocity += h * acc.a;
+          b.angular_velocity += h * acc.alpha;
+        }
+      }
+      break;
+    }
+    case Integrator::RungeKutta4: {
+      if (!any_dependent) {
+        // Constant acceleration over the interval: RK4 is exact, and equals this closed form.
+        for (uint32_t i = 0; i < n; ++i) {
+          if (!isMoving(w, i)) continue;
+          Body& b = w.bodies[i];
+          const Accel acc = accelerationOf(w, i, w.const_wrenches[i]);
+          b.center += h * b.velocity + 0.5 * h * h * acc.a;
+          b.angle += h * b.angular_velocity + 0.5 * h * h * acc.alpha;
+          b.velocity += h * acc.a;
+          b.angular_velocity += h * acc.alpha;
+        }
+        break;
+      }
+      auto& s = w.rk4;
+      for (uint32_t i = 0; i < n; ++i) {
+        if (!isMoving(w, i)) continue;
+        const Body& b = w.bodies[i];
+        s.c0[i] = b.center;
+        s.a0[i] = b.angle;
+        s.v0[i] = b.velocity;
+        s.w0[i] = b.angular_velocity;
+        s.dc[i] = Vec2::Zero();
+        s.dv[i] = Vec2::Zero();
+        s.da[i] = 0.0;
+        s.dw[i] = 0.0;
+      }
+      // Stage k: derivative at (t0 + c_k h) on the current stage states, accumulated with weight
+      // b_k; then the next stage state y0 + a_{k+1} h k.
+      static constexpr double kTime[4] = {0.0, 0.5, 0.5, 1.0};
+      static constexpr double kWeight[4] = {1.0, 2.0, 2.0, 1.0};
+      static constexpr double kNext[3] = {0.5, 0.5, 1.0};
+      for (int k = 0; k < 4; ++k) {
+        derivative(t0 + kTime[k] * h);
+        for (uint32_t i = 0; i < n; ++i) {
+          if (!isMoving(w, i)) continue;
+          const BodyState& st = w.states[i];
+          const Accel acc = accelerationOf(w, i, w.wrenches[i]);
+          const Vec2 kc = st.velocity;
+          const double ka = st.angular_velocity;
+          s.dc[i] += kWeight[k] * kc;
+          s.da[i] += kWeight[k] * ka;
+          s.dv[i] += kWeight[k] * acc.a;
+          s.dw[i] += kWeight[k] * acc.alpha;
+          if (k < 3) {
+            const double f = kNext[k] * h;
+            setStageState(w, i, s.c0[i] + f * kc, s.a0[i] + f * ka, s.v0[i] + f * acc.a, s.w0[i] + f * acc.alpha);
+          }
+        }
+      }
+      for (uint32_t i = 0; i < n; ++i) {
+        if (!isMoving(w, i)) continue;
+        Body& b = w.bodies[i];
+        b.center = s.c0[i] + (h / 6.0) * s.dc[i];
+        b.angle = s.a0[i] + (h / 6.0) * s.da[i];
+        b.velocity = s.v0[i] + (h / 6.0) * s.dv[i];
+        b.angular_velocity = s.w0[i] + (h / 6.0) * s.dw[i];
+      }
+      break;
+    }
+  }
+  for (uint32_t i = 0; i < n; ++i)
+    if (isMoving(w, i)) WorldImpl::syncTransform(w.bodies[i]);
+}
+
+}  // namespace
+
+void integrate(WorldImpl& w, double dt) {
+  const size_t n = w.bodies.size();
+  w.states.resize(n);
+  w.wrenches.resize(n);
+  w.const_wrenches.resize(n);
+  w.start_velocity.resize(n);
+  w.start_angular_velocity.resize(n);
+  for (auto* v : {&w.rk4.c0, &w.rk4.v0, &w.rk4.dc, &w.rk4.dv}) v->resize(n);
+  for (auto* v : {&w.rk4.a0, &w.rk4.w0, &w.rk4.da, &w.rk4.dw}) v->resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    w.start_velocity[i] = w.bodies[i].velocity;
+    w.start_angular_velocity[i] = w.bodies[i].angular_velocity;
+  }
+
+  // Split the step at the end times of forces that run out inside it. Without a split the interval
+  // is exactly dt (not t_end − t_begin, which rounds differently).
+  const double t_begin = w.clock.t, eps = 1e-9 * dt;
+  w.breakpoints.clear();
+  for (const ForceEntry& f : w.forces)
+    if (f.alive && f.expires_at > t_begin + eps && f.expires_at < t_begin + dt - eps) w.breakpoints.push_back(f.expires_at);
+  std::sort(w.breakpoints.begin(), w.breakpoints.end());
+
+  double t = t_begin, done = 0.0;
+  for (double stop : w.breakpoints) {
+    if (stop - t <= eps) continue;
+    integrateInterval(w, t, stop - t);
+    done += stop - t;
+    t = stop;
+  }
+  integrateInterval(w, t, dt - done);
+}
+
+}  // namespace rigidlab

@@ -1,0 +1,185 @@
+// Narrow-phase contact generation. See manifold.h for conventions.
+#include "manifold.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace rigidlab {
+namespace {
+
+// Feature ids. Circle pairs use 0. Polygon–circle: the edge index (face region) or kVertexBit | the
+// vertex index (corner region). Polygon–polygon: reference edge | incident edge << 8 | slot << 16 |
+// flip << 24, where slot 0/1 is the start/end of the incident edge (kept through clipping).
+constexpr uint32_t kVertexBit = 0x100;
+
+uint32_t polygonId(int ref_edge, int inc_edge, int slot, bool flip) {
+  return static_cast<uint32_t>(ref_edge) | static_cast<uint32_t>(inc_edge) << 8 | static_cast<uint32_t>(slot) << 16 |
+         static_cast<uint32_t>(flip) << 24;
+}
+
+int next(int i, size_t n) { return (i + 1) % static_cast<int>(n); }
+
+// Largest separation of `b` from an edge of `a`: for each edge normal of a, the distance of b's
+// deepest vertex from that edge's line. Works in a's frame.
+double findMaxSeparation(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, int& edge) {
+  double best = -std::numeric_limits<double>::infinity();
+  edge = 0;
+  Vec2 vb[kMaxPolygonVertices];
+  const size_t nb = b.vertices.size();
+  for (size_t j = 0; j < nb; ++j) vb[j] = xa.applyInverse(xb.apply(b.vertices[j]));
+  for (size_t i = 0; i < a.vertices.size(); ++i) {
+    const Vec2& n = a.normals[i];
+    const Vec2& v = a.vertices[i];
+    double si = std::numeric_limits<double>::infinity();
+    for (size_t j = 0; j < nb; ++j) si = std::min(si, n.dot(vb[j] - v));
+    if (si > best) {
+      best = si;
+      edge = static_cast<int>(i);
+    }
+  }
+  return best;
+}
+
+Manifold toWorld(Manifold m, const Transform& xf) {
+  m.normal = xf.q.apply(m.normal);
+  for (int i = 0; i < m.count; ++i) m.points[i].point = xf.apply(m.points[i].point);
+  return m;
+}
+
+}  // namespace
+
+Manifold collideCircles(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double margin) {
+  Manifold m;
+  const Vec2 ca = xa.apply(a.center), cb = xb.apply(b.center);
+  const Vec2 d = cb - ca;
+  const double dist = d.norm();
+  const double separation = dist - a.radius - b.radius;
+  if (separation > margin) return m;
+  // Contact on the line of centres (origin.md §7); coincident centres push apart along +y.
+  m.normal = dist > 0.0 ? Vec2(d / dist) : Vec2(0.0, 1.0);
+  const Vec2 pa = ca + a.radius * m.normal, pb = cb - b.radius * m.normal;
+  m.points[0] = {0.5 * (pa + pb), separation, 0};
+  m.count = 1;
+  return m;
+}
+
+Manifold collidePolygonAndCircle(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
+                                 double margin) {
+  // Closest point of the polygon's boundary to the circle's centre (origin.md §7 ClosestEdgePoint),
+  // in the polygon's frame.
+  Manifold m;
+  const Vec2 c = xa.applyInverse(xb.apply(b.center));
+  const double r = b.radius;
+  const size_t n = a.vertices.size();
+  int edge = 0;
+  double face_sep = -std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < n; ++i) {
+    const double s = a.normals[i].dot(c - a.vertices[i]);
+    if (s > face_sep) {
+      face_sep = s;
+      edge = static_cast<int>(i);
+    }
+  }
+  if (face_sep > r + margin) return m;
+
+  const Vec2& v1 = a.vertices[edge];
+  const Vec2& v2 = a.vertices[next(edge, n)];
+  Vec2 normal = a.normals[edge];
+  Vec2 on_polygon;  // closest boundary point
+  uint32_t id = static_cast<uint32_t>(edge);
+  if (face_sep > 0.0 && (c - v1).dot(v2 - v1) < 0.0) {  // corner region of v1
+    on_polygon = v1;
+    id = kVertexBit | static_cast<uint32_t>(edge);
+  } else if (face_sep > 0.0 && (c - v2).dot(v1 - v2) < 0.0) {  // corner region of v2
+    on_polygon = v2;
+    id = kVertexBit | static_cast<uint32_t>(next(edge, n));
+  } else {  // face region, or the centre is inside the polygon: push out through the nearest face
+    on_polygon = c - face_sep * normal;
+  }
+  double separation;
+  if (id & kVertexBit) {
+    const Vec2 d = c - on_polygon;
+    const double dist = d.norm();  // > 0: face_sep > 0 in a corner region
+    separation = dist - r;
+    if (separation > margin) return m;
+    normal = d / dist;
+  } else {
+    separation = face_sep - r;
+  }
+  const Vec2 on_circle = c - r * normal;
+  m.normal = normal;
+  m.points[0] = {0.5 * (on_polygon + on_circle), separation, id};
+  m.count = 1;
+  return toWorld(m, xa);
+}
+
+Manifold collidePolygons(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double margin) {
+  Manifold m;
+  int edge_a = 0, edge_b = 0;
+  const double sep_a = findMaxSeparation(a, xa, b, xb, edge_a);
+  if (sep_a > margin) return m;
+  const double sep_b = findMaxSeparation(b, xb, a, xa, edge_b);
+  if (sep_b > margin) return m;
+
+  // Reference face: the axis of least penetration, preferring A unless B's is clearly better, so
+  // the choice does not flip between steps on nearly equal values (a flip would change feature ids).
+  const double tol = 5e-4 * std::min(maxExtent(a), maxExtent(b));
+  const bool flip = sep_b > sep_a + tol;
+  const Shape& ref = flip ? b : a;
+  const Shape& inc = flip ? a : b;
+  const Transform& xr = flip ? xb : xa;
+  const Transform& xi = flip ? xa : xb;
+  const int ref_edge = flip ? edge_b : edge_a;
+
+  // Incident edge: the edge of `inc` whose normal is most anti-parallel to the reference normal.
+  const Vec2 ref_normal_in_inc = xi.q.applyInverse(xr.q.apply(ref.normals[ref_edge]));
+  int inc_edge = 0;
+  double min_dot = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < inc.normals.size(); ++i) {
+    const double d = ref_normal_in_inc.dot(inc.normals[i]);
+    if (d < min_dot) {
+      min_dot = d;
+      inc_edge = static_cast<int>(i);
+    }
+  }
+
+  // Clip the incident edge to the side planes of the reference edge (world coordinates).
+  const Vec2 r1 = xr.apply(ref.vertices[ref_edge]);
+  const Vec2 r2 = xr.apply(ref.vertices[next(ref_edge, ref.vertices.size())]);
+  const Vec2 tangent = (r2 - r1).normalized();
+  const Vec2 normal(tangent.y(), -tangent.x());  // outward for a counter-clockwise polygon
+  Vec2 p[2] = {xi.apply(inc.vertices[inc_edge]), xi.apply(inc.vertices[next(inc_edge, inc.vertices.size())])};
+  const auto clip = [&](const Vec2& plane_normal, double offset) {
+    const double d0 = plane_normal.dot(p[0]) - offset, d1 = plane_normal.dot(p[1]) - offset;
+    if (d0 > 0.0 && d1 > 0.0) return false;
+    if (d0 > 0.0) p[0] = p[0] + (p[1] - p[0]) * (d0 / (d0 - d1));
+    else if (d1 > 0.0) p[1] = p[1] + (p[0] - p[1]) * (d1 / (d1 - d0));
+    return true;
+  };
+  if (!clip(-tangent, -tangent.dot(r1)) || !clip(tangent, tangent.dot(r2))) return m;
+
+  const double front = normal.dot(r1);
+  m.normal = flip ? Vec2(-normal) : normal;
+  for (int slot = 0; slot < 2; ++slot) {
+    const double separation = normal.dot(p[slot]) - front;
+    if (separation <= margin) {
+      // Midway between the incident point and its projection on the reference face.
+      m.points[m.count++] = {p[slot] - 0.5 * separation * normal, separation, polygonId(ref_edge, inc_edge, slot, flip)};
+    }
+  }
+  return m;
+}
+
+Manifold collideShapes(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double margin) {
+  const bool pa = a.type == ShapeType::Polygon, pb = b.type == ShapeType::Polygon;
+  if (pa && pb) return collidePolygons(a, xa, b, xb, margin);
+  if (pa) return collidePolygonAndCircle(a, xa, b, xb, margin);
+  if (pb) {
+    Manifold m = collidePolygonAndCircle(b, xb, a, xa, margin);
+    m.normal = -m.normal;
+    return m;
+  }
+  return collideCircles(a, xa, b, xb, margin);
+}
+
+}  // namespace rigidlab

@@ -1,0 +1,39 @@
+// Narrow phase (origin.md §7): pure functions per shape pair. No world access, no allocation.
+//
+// A manifold holds up to two points. Its normal is a unit vector from shape A to shape B. Each
+// point lies midway between the two surfaces and carries the separation along the normal
+// (negative = penetration depth) and a feature id: the same id on consecutive steps means the same
+// pair of features (edges, vertices) touch, so a solver can carry impulses across steps.
+//
+// Polygon–polygon uses the separating-axis test with reference-face clipping (E. Catto, "Contact
+// Manifolds", GDC 2007; Box2D b2CollidePolygons) rather than the thesis's vertex-in-polygon test:
+// it finds the same deepest points and the two ends of an edge–edge contact (the thesis's
+// EdgeEdgeCollision), and it is robust when no vertex lies inside the other polygon.
+#pragma once
+
+#include <cstdint>
+
+#include "rigidlab/shape.h"
+
+namespace rigidlab {
+
+struct ManifoldPoint {
+  Vec2 point = Vec2::Zero();  // world, midway between the surfaces [m]
+  double separation = 0.0;    // along the normal [m]; < 0 overlap
+  uint32_t id = 0;            // feature id
+};
+
+struct Manifold {
+  Vec2 normal = Vec2::Zero();  // unit, A → B
+  ManifoldPoint points[2];
+  int count = 0;
+};
+
+// Points are reported when their separation is ≤ margin (margin 0: touching or overlapping).
+Manifold collideCircles(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double margin);
+Manifold collidePolygonAndCircle(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double margin);
+Manifold collidePolygons(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double margin);
+// Dispatches on the shape types; a circle–polygon pair is solved as polygon–circle and flipped.
+Manifold collideShapes(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double margin);
+
+}  // namespace rigidlab

@@ -1,0 +1,53 @@
+// Stage 3 of the step: contact manifolds for the candidate pairs (origin.md §7), each turned into a
+// contact constraint with the pair's combined material (body.h Material).
+//
+// Persistent contacts: a point whose pair and feature id were in contact in the previous step
+// starts with that step's accumulated impulses (warm starting, Catto GDC 2006). The solver then
+// refines last step's answer instead of starting from zero, so resting contacts converge over steps
+// rather than within one step's iterations. Both the new pairs and the previous contacts are sorted
+// by (a, b), so matching is a single merge walk.
+#include <algorithm>
+#include <cmath>
+
+#include "stages.h"
+#include "world_impl.h"
+
+namespace rigidlab {
+
+void narrowPhase(WorldImpl& w) {
+  std::swap(w.contacts, w.previous_contacts);
+  w.contacts.clear();
+  size_t old = 0;
+  const auto& prev = w.previous_contacts;
+  for (const BodyPair& pair : w.pairs) {
+    const Body& a = w.bodies[pair.a];
+    const Body& b = w.bodies[pair.b];
+    const Manifold m = collideShapes(a.shape, a.xf, b.shape, b.xf, 0.0);
+    if (m.count == 0) continue;
+    Contact c;
+    c.a = pair.a;
+    c.b = pair.b;
+    c.normal = m.normal;
+    c.count = m.count;
+    for (int i = 0; i < m.count; ++i) {
+      c.points[i].point = m.points[i].point;
+      c.points[i].separation = m.points[i].separation;
+      c.points[i].id = m.points[i].id;
+    }
+    c.restitution = std::max(a.material.restitution, b.material.restitution);
+    c.friction = std::sqrt(a.material.friction * b.material.friction);
+    c.static_friction = std::sqrt(a.material.static_friction * b.material.static_friction);
+    while (old < prev.size() && (prev[old].a < c.a || (prev[old].a == c.a && prev[old].b < c.b))) ++old;
+    if (old < prev.size() && prev[old].a == c.a && prev[old].b == c.b) {
+      for (int i = 0; i < c.count; ++i)
+        for (int j = 0; j < prev[old].count; ++j)
+          if (prev[old].points[j].id == c.points[i].id) {
+            c.points[i].normal_impulse = prev[old].points[j].normal_impulse;
+            c.points[i].tangent_impulse = prev[old].points[j].tangent_impulse;
+          }
+    }
+    w.contacts.push_back(c);
+  }
+}
+
+}  // namespace rigidlab

@@ -1,0 +1,204 @@
+// Shape construction, validation and mass properties. See shape.h for the polygon input policy.
+#include "rigidlab/shape.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "rigidlab/error.h"
+
+namespace rigidlab {
+namespace {
+
+std::string vertexField(int index) { return "vertices[" + std::to_string(index + 1) + "]"; }  // 1-based, as in Lua
+
+void computeNormals(Shape& s) {
+  const size_t n = s.vertices.size();
+  s.normals.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    const Vec2 edge = s.vertices[(i + 1) % n] - s.vertices[i];
+    s.normals[i] = Vec2(edge.y(), -edge.x()).normalized();  // right of a CCW edge = outward
+  }
+}
+
+}  // namespace
+
+Shape makeCircle(double radius, const Vec2& center) {
+  Shape s;
+  s.type = ShapeType::Circle;
+  s.radius = requirePositive("radius", radius);
+  s.center = requireFinite("center", center);
+  return s;
+}
+
+Shape makePolygon(std::span<const Vec2> points) {
+  const int n = static_cast<int>(points.size());
+  if (n < 3) throw InputError("vertices", "vertices needs at least 3 points, got " + std::to_string(n));
+  if (n > kMaxPolygonVertices)
+    throw InputError("vertices", "vertices has " + std::to_string(n) + " points, at most " +
+                                     std::to_string(kMaxPolygonVertices) + " are allowed");
+  for (int i = 0; i < n; ++i) requireFinite(vertexField(i), points[i]);
+
+  // Tolerances scale with the polygon so that 1 cm and 1 km shapes are treated alike.
+  Vec2 lo = points[0], hi = points[0];
+  for (const Vec2& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double extent = (hi - lo).norm();
+  const double tol = 1e-9 * extent;
+
+  // Merge duplicates, remembering each kept point's input index for error messages.
+  std::vector<Vec2> v;
+  std::vector<int> origin;
+  for (int i = 0; i < n; ++i) {
+    const bool dup = std::any_of(v.begin(), v.end(), [&](const Vec2& q) { return (q - points[i]).norm() <= tol; });
+    if (!dup) {
+      v.push_back(points[i]);
+      origin.push_back(i);
+    }
+  }
+  if (v.size() < 3)
+    throw InputError("vertices", "vertices has only " + std::to_string(v.size()) +
+                                     " distinct points, a polygon needs 3");
+
+  // Enforce counter-clockwise order (positive signed area, origin.md §3).
+  double area2 = 0.0;
+  for (size_t i = 0; i < v.size(); ++i) area2 += cross(v[i] - v[0], v[(i + 1) % v.size()] - v[0]);
+  if (area2 < 0) {
+    std::reverse(v.begin(), v.end());
+    std::reverse(origin.begin(), origin.end());
+  }
+
+  // Drop collinear points: a vertex within `tol` of the line through its neighbours.
+  for (bool changed = true; changed && v.size() >= 3;) {
+    changed = false;
+    for (size_t i = 0; i < v.size(); ++i) {
+      const Vec2& a = v[(i + v.size() - 1) % v.size()];
+      const Vec2& b = v[i];
+      const Vec2& c = v[(i + 1) % v.size()];
+      const double len = (c - a).norm();
+      if (len == 0.0 || std::abs(cross(c - a, b - a)) / len <= tol) {
+        v.erase(v.begin() + static_cast<long>(i));
+        origin.erase(origin.begin() + static_cast<long>(i));
+        changed = true;
+        break;
+      }
+    }
+  }
+  if (v.size() < 3) throw InputError("vertices", "vertices are collinear: the polygon has zero area");
+
+  // Convexity: every corner must turn left, and the outline must go around exactly once.
+  double turning = 0.0;
+  const size_t m = v.size();
+  for (size_t i = 0; i < m; ++i) {
+    const Vec2 e0 = v[(i + 1) % m] - v[i];
+    const Vec2 e1 = v[(i + 2) % m] - v[(i + 1) % m];
+    const double c = cross(e0, e1);
+    if (c <= 0) {
+      const int bad = origin[(i + 1) % m];
+      throw InputError(vertexField(bad), "polygon is not convex: it turns clockwise at " + vertexField(bad) + " " +
+                                             formatVec(points[bad]) + " (split concave shapes into convex pieces)");
+    }
+    turning += std::atan2(c, e0.dot(e1));
+  }
+  if (turning > 2.0 * std::numbers::pi + 1e-6)
+    throw InputError("vertices", "polygon outline crosses itself (it winds around " +
+                                     std::to_string(static_cast<int>(std::lround(turning / (2 * std::numbers::pi)))) +
+                                     " times)");
+
+  Shape s;
+  s.type = ShapeType::Polygon;
+  s.vertices = std::move(v);
+  computeNormals(s);
+  return s;
+}
+
+Shape makeBox(double width, double height, const Vec2& center, double angle) {
+  const double hx = 0.5 * requirePositive("width", width);
+  const double hy = 0.5 * requirePositive("height", height);
+  requireFinite("center", center);
+  const Rot q = Rot::fromAngle(requireFinite("angle", angle));
+  Shape s;
+  s.type = ShapeType::Polygon;
+  for (const Vec2& corner : {Vec2(-hx, -hy), Vec2(hx, -hy), Vec2(hx, hy), Vec2(-hx, hy)})
+    s.vertices.push_back(center + q.apply(corner));
+  computeNormals(s);
+  return s;
+}
+
+MassData computeMass(const Shape& shape, double density) {
+  MassData md;
+  if (shape.type == ShapeType::Circle) {
+    // Disc: A = πR², I = ½ m R² about its centre (origin.md §1).
+    md.area = std::numbers::pi * shape.radius * shape.radius;
+    md.mass = density * md.area;
+    md.center = shape.center;
+    md.inertia = 0.5 * md.mass * shape.radius * shape.radius;
+    return md;
+  }
+  // Polygon centroid (origin.md §3), summed relative to vertex 0 for precision far from the origin:
+  //   A = ½ Σ (x_i y_{i+1} − x_{i+1} y_i)
+  //   C = 1/(6A) Σ (p_i + p_{i+1}) (x_i y_{i+1} − x_{i+1} y_i)
+  const std::vector<Vec2>& v = shape.vertices;
+  const size_t n = v.size();
+  const Vec2 ref = v[0];
+  double area2 = 0.0;
+  Vec2 c = Vec2::Zero();
+  for (size_t i = 0; i < n; ++i) {
+    const Vec2 p0 = v[i] - ref, p1 = v[(i + 1) % n] - ref;
+    const double w = cross(p0, p1);
+    area2 += w;
+    c += (p0 + p1) * w;
+  }
+  md.area = 0.5 * area2;
+  md.center = ref + c / (3.0 * area2);  // 1/(6A) = 1/(3·2A)
+  md.mass = density * md.area;
+  // Inertia about the centroid (origin.md §3), p_i relative to the centroid:
+  //   I = (m/6) Σ |p_{i+1} × p_i| (p_{i+1}·p_{i+1} + p_{i+1}·p_i + p_i·p_i) / Σ |p_{i+1} × p_i|
+  double num = 0.0, den = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    const Vec2 p0 = v[i] - md.center, p1 = v[(i + 1) % n] - md.center;
+    const double w = std::abs(cross(p1, p0));
+    num += w * (p1.dot(p1) + p1.dot(p0) + p0.dot(p0));
+    den += w;
+  }
+  md.inertia = md.mass / 6.0 * num / den;
+  return md;
+}
+
+Aabb computeAabb(const Shape& shape, const Transform& xf) {
+  if (shape.type == ShapeType::Circle) {
+    const Vec2 c = xf.apply(shape.center);
+    const Vec2 r(shape.radius, shape.radius);
+    return {c - r, c + r};
+  }
+  Aabb box{xf.apply(shape.vertices[0]), xf.apply(shape.vertices[0])};
+  for (size_t i = 1; i < shape.vertices.size(); ++i) {
+    const Vec2 p = xf.apply(shape.vertices[i]);
+    box.lower = box.lower.cwiseMin(p);
+    box.upper = box.upper.cwiseMax(p);
+  }
+  return box;
+}
+
+bool containsPoint(const Shape& shape, const Transform& xf, const Vec2& p) {
+  const Vec2 local = xf.applyInverse(p);
+  if (shape.type == ShapeType::Circle) return (local - shape.center).norm() <= shape.radius;
+  const size_t n = shape.vertices.size();
+  for (size_t i = 0; i < n; ++i) {
+    const Vec2& a = shape.vertices[i];
+    const Vec2& b = shape.vertices[(i + 1) % n];
+    if (cross(b - a, local - a) < 0) return false;
+  }
+  return true;
+}
+
+double maxExtent(const Shape& shape) {
+  if (shape.type == ShapeType::Circle) return shape.center.norm() + shape.radius;
+  double r = 0.0;
+  for (const Vec2& v : shape.vertices) r = std::max(r, v.norm());
+  return r;
+}
+
+}  // namespace rigidlab

@@ -1,0 +1,15 @@
+// The stages of World::step, one file each, in pipeline order.
+#pragma once
+
+namespace rigidlab {
+
+struct WorldImpl;
+
+void integrate(WorldImpl& w, double dt);   // integrator.cpp      origin.md §5
+void findPairs(WorldImpl& w);              // broad_phase.cpp     origin.md §7
+void narrowPhase(WorldImpl& w);            // narrow_phase.cpp    origin.md §7
+void solveContacts(WorldImpl& w);          // contact_solver.cpp  origin.md §8–10
+void correctPositions(WorldImpl& w);       // position_correction.cpp  origin.md §9
+void expireForces(WorldImpl& w);           // world.cpp           origin.md §6
+
+}  // namespace rigidlab

@@ -1,0 +1,90 @@
+// Internal state of a World, shared by the step stages (one file per stage). Not installed: user
+// code sees only world.h. Tests may include it (white-box).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "broad_phase.h"
+#include "contact.h"
+#include "rigidlab/world.h"
+
+namespace rigidlab {
+
+struct ForceEntry {
+  std::unique_ptr<Force> force;
+  BodyId a, b;
+  double expires_at = World::kForever;  // simulation time at which the force stops acting [s]
+  uint32_t generation = 0;
+  bool alive = false;
+};
+
+// Kahan-compensated clock: after a million steps of 1/60 s the time is still the nearest double
+// to N/60, so "run until t = T" loops and trace timestamps do not drift.
+struct SimClock {
+  double t = 0.0;
+  double carry = 0.0;
+  void advance(double dt) {
+    const double y = dt - carry;
+    const double s = t + y;
+    carry = (s - t) - y;
+    t = s;
+  }
+};
+
+struct WorldImpl {
+  WorldDef def;
+
+  // Bodies by slot (BodyId::index). Destroyed slots are reused, most recent first.
+  std::vector<Body> bodies;
+  std::vector<char> alive;
+  std::vector<uint32_t> free_bodies;
+
+  std::vector<ForceEntry> forces;
+  std::vector<uint32_t> free_forces;
+
+  SimClock clock;
+  double dt = 0.0;  // of the step in progress [s]
+  long step_count = 0;
+  bool locked = false;  // true while step() runs
+  StepStats stats;
+
+  // Scratch reused by every step, so a step in steady state allocates nothing.
+  std::vector<BodyState> states;      // per slot: state seen by forces
+  std::vector<Wrench> wrenches;       // per slot: force accumulator
+  std::vector<Wrench> const_wrenches; // per slot: state-independent forces, once per interval
+  std::vector<Vec2> start_velocity;   // per slot: velocity at the start of the step (friction choice)
+  std::vector<double> start_angular_velocity;
+  std::vector<double> breakpoints;    // force expiry times inside the current step
+  struct Rk4Scratch {
+    std::vector<Vec2> c0, v0, dc, dv;
+    std::vector<double> a0, w0, da, dw;
+  } rk4;
+
+  std::vector<Vec2> solve_start_velocity;  // per slot: velocity before the contact solve
+  std::vector<double> solve_start_angular_velocity;
+  std::vector<char> in_contact;           // per slot: touches something this step
+  std::vector<Vec2> correction_start;     // per slot: centre before position correction
+  std::vector<double> correction_start_angle;
+
+  std::unique_ptr<BroadPhase> broad_phase;
+  std::vector<Proxy> proxies;
+  std::vector<BodyPair> pairs;
+  std::vector<Contact> contacts;           // this step's, sorted by (a, b)
+  std::vector<Contact> previous_contacts;  // last step's, for warm starting
+
+  bool isLive(BodyId id) const {
+    return id.index < bodies.size() && alive[id.index] && bodies[id.index].id.generation == id.generation;
+  }
+  Body& get(BodyId id);              // throws InputError("body", ...) for a stale handle
+  const Body& get(BodyId id) const;
+
+  // Recomputes the origin transform from the centre of mass and angle.
+  static void syncTransform(Body& b) {
+    b.xf.q = Rot::fromAngle(b.angle);
+    b.xf.p = b.center - b.xf.q.apply(b.local_center);
+  }
+  static BodyState stateOf(const Body& b);
+};
+
+}  // namespace rigidlab

@@ -1,0 +1,159 @@
+// Narrow phase (origin.md §7): every shape pair in every configuration, normals from A to B,
+// depths, point positions and feature ids.
+#include <doctest/doctest.h>
+
+#include <numbers>
+
+#include "manifold.h"
+#include "rigidlab/shape.h"
+
+using namespace rigidlab;
+using doctest::Approx;
+
+namespace {
+Transform at(double x, double y, double angle = 0.0) { return {Vec2(x, y), Rot::fromAngle(angle)}; }
+}  // namespace
+
+TEST_CASE("circle–circle") {
+  const Shape a = makeCircle(1.0), b = makeCircle(0.5);
+  SUBCASE("separated") { CHECK(collideShapes(a, at(0, 0), b, at(1.6, 0), 0.0).count == 0); }
+  SUBCASE("touching") {
+    const Manifold m = collideShapes(a, at(0, 0), b, at(1.5, 0), 0.0);
+    REQUIRE(m.count == 1);
+    CHECK(m.points[0].separation == Approx(0.0));
+    CHECK(m.points[0].point.x() == Approx(1.0));
+  }
+  SUBCASE("overlapping on a diagonal: normal A→B, point midway between the surfaces") {
+    const double d = 1.2 / std::sqrt(2.0);
+    const Manifold m = collideShapes(a, at(0, 0), b, at(d, d), 0.0);
+    REQUIRE(m.count == 1);
+    CHECK(m.normal.x() == Approx(std::sqrt(0.5)));
+    CHECK(m.normal.y() == Approx(std::sqrt(0.5)));
+    CHECK(m.points[0].separation == Approx(-0.3));
+    CHECK(m.points[0].point.norm() == Approx(0.85));  // surfaces at 1.0 and 0.7 from A's centre
+  }
+  SUBCASE("swapping A and B flips the normal") {
+    const Manifold m = collideShapes(b, at(1.2, 0), a, at(0, 0), 0.0);
+    REQUIRE(m.count == 1);
+    CHECK(m.normal.x() == Approx(-1.0));
+  }
+  SUBCASE("coincident centres separate along +y") {
+    const Manifold m = collideShapes(a, at(3, 3), b, at(3, 3), 0.0);
+    REQUIRE(m.count == 1);
+    CHECK(m.normal.y() == Approx(1.0));
+    CHECK(m.points[0].separation == Approx(-1.5));
+  }
+}
+
+TEST_CASE("polygon–circle") {
+  const Shape box = makeBox(2.0, 2.0), disc = makeCircle(0.5);
+  SUBCASE("separated, face region") { CHECK(collideShapes(box, at(0, 0), disc, at(1.6, 0), 0.0).count == 0); }
+  SUBCASE("separated, corner region (inside the face slab test, outside the corner circle)") {
+    CHECK(collideShapes(box, at(0, 0), disc, at(1.4, 1.4), 0.0).count == 0);
+  }
+  SUBCASE("touching a face") {
+    const Manifold m = collideShapes(box, at(0, 0), disc, at(1.5, 0), 0.0);
+    REQUIRE(m.count == 1);
+    CHECK(m.points[0].separation == Approx(0.0));
+  }
+  SUBCASE("overlapping a face") {
+    const Manifold m = collideShapes(box, at(0, 0), disc, at(1.3, 0.2), 0.0);
+    REQUIRE(m.count == 1);
+    CHECK(m.normal.x() == Approx(1.0));
+    CHECK(m.normal.y() == Approx(0.0));
+    CHECK(m.points[0].separation == Approx(-0.2));
+    CHECK(m.points[0].point.x() == Approx(0.9));  // between the face (1.0) and the circle (0.8)
+    CHECK(m.points[0].point.y() == Approx(0.2));
+  }
+  SUBCASE("overlapping a corner: normal from the corner to the centre") {
+    const Manifold m = collideShapes(box, at(0, 0), disc, at(1.3, 1.3), 0.0);
+    REQUIRE(m.count == 1);
+    CHECK(m.normal.x() == Approx(std::sqrt(0.5)));
+    CHECK(m.normal.y() == Approx(std::sqrt(0.5)));
+    CHECK(m.points[0].separation == Approx(0.3 * std::sqrt(2.0) - 0.5));
+  }
+  SUBCASE("circle centre inside the polygon: pushed out through the nearest face") {
+    const Manifold m = collideShapes(box, at(0, 0), disc, at(0.1, -0.8), 0.0);
+    REQUIRE(m.count == 1);
+    CHECK(m.normal.y() == Approx(-1.0));
+    CHECK(m.points[0].separation == Approx(-0.2 - 0.5));
+  }
+  SUBCASE("circle as A: the normal still points from A to B") {
+    const Manifold m = collideShapes(disc, at(1.3, 0.2), box, at(0, 0), 0.0);
+    REQUIRE(m.count == 1);
+    CHECK(m.normal.x() == Approx(-1.0));
+    CHECK(m.points[0].separation == Approx(-0.2));
+  }
+  SUBCASE("rotated polygon") {
+    const Manifold m = collideShapes(box, at(0, 0, std::numbers::pi / 2), disc, at(0, 1.4), 0.0);
+    REQUIRE(m.count == 1);
+    CHECK(m.normal.y() == Approx(1.0));
+    CHECK(m.points[0].separation == Approx(-0.1));
+  }
+}
+
+TEST_CASE("polygon–polygon") {
+  const Shape box = makeBox(2.0, 2.0);
+  SUBCASE("separated") { CHECK(collideShapes(box, at(0, 0), box, at(0.5, 2.1), 0.0).count == 0); }
+  SUBCASE("separated along a diagonal axis") {
+    CHECK(collideShapes(box, at(0, 0), box, at(2.05, 2.05, std::numbers::pi / 4), 0.0).count == 0);
+  }
+  SUBCASE("touching face to face: two points at zero separation") {
+    const Manifold m = collideShapes(box, at(0, 0), box, at(0.5, 2.0), 0.0);
+    REQUIRE(m.count == 2);
+    CHECK(m.points[0].separation == Approx(0.0));
+    CHECK(m.points[1].separation == Approx(0.0));
+  }
+  SUBCASE("edge–edge: two points at the ends of the contact segment") {
+    const Manifold m = collideShapes(box, at(0, 0), box, at(1.5, 1.9), 0.0);
+    REQUIRE(m.count == 2);
+    CHECK(m.normal.x() == Approx(0.0));
+    CHECK(m.normal.y() == Approx(1.0));
+    double xs[2] = {m.points[0].point.x(), m.points[1].point.x()};
+    if (xs[0] > xs[1]) std::swap(xs[0], xs[1]);
+    CHECK(xs[0] == Approx(0.5));  // the overlap of the two top/bottom edges is x ∈ [0.5, 1]
+    CHECK(xs[1] == Approx(1.0));
+    for (int i = 0; i < 2; ++i) {
+      CHECK(m.points[i].separation == Approx(-0.1));
+      CHECK(m.points[i].point.y() == Approx(0.95));
+    }
+    CHECK(m.points[0].id != m.points[1].id);
+  }
+  SUBCASE("vertex–edge: one point at the penetrating corner") {
+    // A square turned 45° whose lowest corner is 0.05 below the top face of the lower box.
+    const double half_diag = std::sqrt(2.0);
+    const Manifold m = collideShapes(box, at(0, 0), box, at(0.3, 1.0 + half_diag - 0.05, std::numbers::pi / 4), 0.0);
+    REQUIRE(m.count == 1);
+    CHECK(m.normal.y() == Approx(1.0));
+    CHECK(m.points[0].separation == Approx(-0.05));
+    CHECK(m.points[0].point.x() == Approx(0.3));
+    CHECK(m.points[0].point.y() == Approx(0.975));
+  }
+  SUBCASE("swapping A and B flips the normal, keeps the depths") {
+    const Manifold m = collideShapes(box, at(1.5, 1.9), box, at(0, 0), 0.0);
+    REQUIRE(m.count == 2);
+    CHECK(m.normal.y() == Approx(-1.0));
+    CHECK(m.points[0].separation == Approx(-0.1));
+  }
+  SUBCASE("feature ids are stable while the same features touch") {
+    const Manifold m1 = collideShapes(box, at(0, 0), box, at(1.5, 1.9), 0.0);
+    const Manifold m2 = collideShapes(box, at(0, 0), box, at(1.45, 1.92, 0.01), 0.0);
+    REQUIRE(m1.count == 2);
+    REQUIRE(m2.count == 2);
+    CHECK(m1.points[0].id == m2.points[0].id);
+    CHECK(m1.points[1].id == m2.points[1].id);
+  }
+  SUBCASE("small box deep inside a large one: pushed out through the nearest face") {
+    const Manifold m = collideShapes(makeBox(10, 10), at(0, 0), makeBox(1, 1), at(4.2, 0), 0.0);
+    REQUIRE(m.count == 2);
+    CHECK(m.normal.x() == Approx(1.0));
+    CHECK(m.points[0].separation == Approx(-1.3));  // 5 − (4.2 − 0.5)
+  }
+  SUBCASE("triangle against box") {
+    const std::vector<Vec2> tri = {{-1, 0}, {1, 0}, {0, 1}};
+    const Manifold m = collideShapes(box, at(0, 0), makePolygon(tri), at(0, 0.9), 0.0);
+    REQUIRE(m.count == 2);
+    CHECK(m.normal.y() == Approx(1.0));
+    CHECK(m.points[0].separation == Approx(-0.1));
+  }
+}

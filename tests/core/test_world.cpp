@@ -1,0 +1,250 @@
+// World API: bodies, handles, forces, energies, picking, drawing and input validation.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "test_util.h"
+
+using namespace rigidlab;
+using doctest::Approx;
+
+TEST_CASE("bodies: mass from density or from a given mass; centre of mass off the origin") {
+  World w;
+  BodyDef d;
+  d.shape = makeBox(2, 1, Vec2(1, 0));  // shape centred 1 m right of the body origin
+  d.density = 2.0;
+  d.position = {5, 5};
+  d.angle = std::numbers::pi / 2;
+  const BodyId a = w.createBody(d);
+  const Body& A = w.body(a);
+  CHECK(A.mass == Approx(4.0));
+  CHECK(A.inertia == Approx(4.0 * 5.0 / 12.0));
+  CHECK(A.center.x() == Approx(5.0));  // the offset turned by 90°
+  CHECK(A.center.y() == Approx(6.0));
+  CHECK(A.position().x() == Approx(5.0));
+  d.mass = 10.0;
+  const Body& B = w.body(w.createBody(d));
+  CHECK(B.mass == Approx(10.0));
+  CHECK(B.density == Approx(5.0));
+  CHECK(B.inertia == Approx(10.0 * 5.0 / 12.0));
+}
+
+TEST_CASE("bodies: static ones do not move; switching type at run time") {
+  World w;
+  const BodyId box = test::addBox(w, 1, 1, {0, 10}, true);
+  for (int i = 0; i < 30; ++i) w.step(1.0 / 60.0);
+  CHECK(w.body(box).position().y() == 10.0);
+  w.setType(box, BodyType::Dynamic);
+  CHECK(w.body(box).inv_mass == Approx(1.0));
+  for (int i = 0; i < 60; ++i) w.step(1.0 / 60.0);
+  CHECK(w.body(box).position().y() == Approx(10.0 - 0.5 * 9.80665).epsilon(1e-9));
+  w.setType(box, BodyType::Static);
+  CHECK(w.body(box).velocity.norm() == 0.0);
+  CHECK(w.body(box).inv_mass == 0.0);
+  CHECK(w.body(box).mass == Approx(1.0));  // kept, for switching back
+}
+
+TEST_CASE("handles: destroyed bodies are detected, slots are reused with a new generation") {
+  World w;
+  const BodyId a = test::addCircle(w, 0.5, {0, 0});
+  const BodyId b = test::addCircle(w, 0.5, {3, 0});
+  DamperDef damper;
+  damper.body = a;
+  damper.coefficient = 1.0;
+  const ForceId f = w.addDamper(damper);
+  w.destroyBody(a);
+  CHECK_FALSE(w.isValid(a));
+  CHECK_FALSE(w.isValid(f));  // a body's forces go with it
+  CHECK(w.bodyCount() == 1);
+  CHECK(test::errorOf([&] { w.body(a); }) == "body handle is not valid (the body was removed or never existed)");
+  const BodyId c = test::addCircle(w, 0.5, {0, 0});
+  CHECK(c.index == a.index);
+  CHECK(c.generation != a.generation);
+  CHECK_FALSE(w.isValid(a));
+  CHECK(w.isValid(b));
+  CHECK(w.bodyIds().size() == 2);
+}
+
+TEST_CASE("names, lookup and picking (point in shape)") {
+  World w;
+  BodyDef d;
+  d.shape = makeBox(2, 2);
+  d.name = "crate";
+  const BodyId crate = w.createBody(d);
+  d.shape = makeCircle(0.5);
+  d.position = {0.5, 0.5};
+  d.name = "ball";
+  const BodyId ball = w.createBody(d);
+  CHECK(w.findBody("crate") == crate);
+  CHECK_FALSE(w.findBody("nothing").has_value());
+  CHECK(w.bodyAt({0.6, 0.6}) == ball);    // the later body is on top
+  CHECK(w.bodyAt({-0.8, -0.8}) == crate);
+  CHECK_FALSE(w.bodyAt({3, 3}).has_value());
+}
+
+TEST_CASE("energies: kinetic ½mv² + ½Iω², gravity −m g·c, springs ½kx²") {
+  World w;
+  BodyDef d;
+  d.shape = makeCircle(1.0);
+  d.mass = 2.0;  // I = 1
+  d.position = {0, 3};
+  d.velocity = {3, 4};
+  d.angular_velocity = 2.0;
+  const BodyId a = w.createBody(d);
+  CHECK(w.kineticEnergy() == Approx(0.5 * 2 * 25 + 0.5 * 1 * 4));
+  CHECK(w.gravityPotentialEnergy() == Approx(2 * 9.80665 * 3));
+  SpringDef s;
+  s.a = a;
+  s.anchor = {0, 0};
+  s.stiffness = 10.0;
+  s.rest_length = 1.0;
+  w.addSpring(s);
+  CHECK(w.potentialEnergy() == Approx(2 * 9.80665 * 3 + 0.5 * 10.0 * 4.0));
+}
+
+TEST_CASE("springs: default rest length is the distance at creation; force F = −k (L − L0)") {
+  World w;
+  w.setGravity(Vec2::Zero());
+  const BodyId a = test::addCircle(w, 0.1, {0, 0});
+  const BodyId b = test::addCircle(w, 0.1, {2, 0});
+  SpringDef s;
+  s.a = a;
+  s.b = b;
+  s.stiffness = 5.0;
+  const ForceId id = w.addSpring(s);
+  auto& spring = dynamic_cast<SpringForce&>(w.force(id));
+  CHECK(*spring.def().rest_length == Approx(2.0));
+  ForceOutput out;
+  const BodyState sa = w.bodyState(a);
+  BodyState sb = w.bodyState(b);
+  sb.position = sb.center = {3, 0};  // stretched by 1 m
+  spring.evaluate({sa, &sb, 0.0}, out);
+  CHECK(out.a.force.x() == Approx(5.0));  // pulls a towards b
+  CHECK(out.b.force.x() == Approx(-5.0));
+}
+
+TEST_CASE("the mouse force is a damped spring to the cursor with a capped magnitude") {
+  World w;
+  const BodyId a = test::addCircle(w, 0.5, {0, 0}, 2.0);
+  MouseForceDef def = MouseForce::forBody(w.body(a), {0, 0});
+  CHECK(def.stiffness == Approx(2.0 * std::pow(2 * std::numbers::pi * 5.0, 2)));
+  def.target = {100, 0};
+  MouseForce mouse(def);
+  ForceOutput out;
+  mouse.evaluate({w.bodyState(a), nullptr, 0.0}, out);
+  CHECK(out.a.force.norm() == Approx(def.max_force));
+  CHECK(out.a.force.x() > 0);
+}
+
+TEST_CASE("applyImpulse: Δv = J/m, Δω = (p − c) × J / I") {
+  World w;
+  w.setGravity(Vec2::Zero());
+  const BodyId a = test::addBox(w, 2, 2, {0, 0});  // m = 4, I = 4·8/12
+  w.applyImpulse(a, {0, 2}, {1, 0});
+  CHECK(w.body(a).velocity.y() == Approx(0.5));
+  CHECK(w.body(a).angular_velocity == Approx(2.0 / (4.0 * 8.0 / 12.0)));
+}
+
+TEST_CASE("edits from inside a force while the world steps are refused") {
+  struct Meddler final : Force {
+    World* world;
+    std::string error;
+    void evaluate(const ForceInput& in, ForceOutput&) override {
+      error = test::errorOf([&] { world->destroyBody(in.a.id); });
+    }
+    std::string_view kind() const override { return "meddler"; }
+  };
+  World w;
+  const BodyId a = test::addCircle(w, 0.5, {0, 0});
+  auto meddler = std::make_unique<Meddler>();
+  Meddler* m = meddler.get();
+  m->world = &w;
+  w.addForce(std::move(meddler), a);
+  w.step(1.0 / 60.0);
+  CHECK(m->error == "destroyBody is not allowed while the world is stepping (e.g. from inside a force)");
+  CHECK(w.isValid(a));
+}
+
+TEST_CASE("every rejected input names the field and the value") {
+  World w;
+  const BodyId a = test::addCircle(w, 0.5, {0, 0});
+  const auto create = [&](auto edit) {
+    BodyDef d;
+    d.shape = makeCircle(1.0);
+    edit(d);
+    return test::errorOf([&] { w.createBody(d); });
+  };
+  CHECK(create([](BodyDef& d) { d.density = 0.0; }) == "density must be > 0, got 0");
+  CHECK(create([](BodyDef& d) { d.mass = -1.0; }) == "mass must be > 0, got -1");
+  CHECK(create([](BodyDef& d) { d.position = {NAN, 0}; }) == "position must be finite, got (nan, 0)");
+  CHECK(create([](BodyDef& d) { d.velocity = {0, INFINITY}; }) == "velocity must be finite, got (0, inf)");
+  CHECK(create([](BodyDef& d) { d.angle = NAN; }) == "angle must be finite, got nan");
+  CHECK(create([](BodyDef& d) { d.angular_velocity = -INFINITY; }) == "angular_velocity must be finite, got -inf");
+  CHECK(create([](BodyDef& d) { d.restitution = 1.5; }) == "restitution must be between 0 and 1, got 1.5");
+  CHECK(create([](BodyDef& d) { d.friction = -0.1; }) == "friction must be >= 0, got -0.1");
+  CHECK(create([](BodyDef& d) { d.static_friction = NAN; }) == "static_friction must be >= 0, got nan");
+  CHECK(create([](BodyDef& d) { d.shape.radius = -2.0; }) == "radius must be > 0, got -2");
+
+  CHECK(test::errorOf([&] { w.step(0.0); }) == "dt must be > 0, got 0");
+  CHECK(test::errorOf([&] { w.step(NAN); }) == "dt must be > 0, got nan");
+  CHECK(test::errorOf([&] { w.setIterations(0); }) == "iterations must be between 1 and 10000, got 0");
+  CHECK(test::errorOf([&] { w.setGravity({0, NAN}); }) == "gravity must be finite, got (0, nan)");
+  CHECK(test::errorOf([&] { w.setMass(a, 0.0); }) == "mass must be > 0, got 0");
+  CHECK(test::errorOf([&] { w.setVelocity(a, {INFINITY, 0}); }) == "velocity must be finite, got (inf, 0)");
+  CHECK(test::errorOf([&] { w.setRestitutionThreshold(-1); }) == "restitution_threshold must be >= 0, got -1");
+
+  SpringDef s;
+  s.a = a;
+  s.anchor = {1, 1};
+  s.stiffness = -5.0;
+  CHECK(test::errorOf([&] { w.addSpring(s); }) == "stiffness must be >= 0, got -5");
+  s.stiffness = 5.0;
+  s.damping = NAN;
+  CHECK(test::errorOf([&] { w.addSpring(s); }) == "damping must be >= 0, got nan");
+  s.damping = 0.0;
+  s.rest_length = -1.0;
+  CHECK(test::errorOf([&] { w.addSpring(s); }) == "rest_length must be >= 0, got -1");
+  s.rest_length.reset();
+  s.b = a;
+  CHECK(test::errorOf([&] { w.addSpring(s); }) == "a two-body force needs two different bodies");
+  DamperDef damper;
+  damper.body = a;
+  damper.coefficient = -3.0;
+  CHECK(test::errorOf([&] { w.addDamper(damper); }) == "coefficient must be >= 0, got -3");
+  damper.coefficient = 1.0;
+  CHECK(test::errorOf([&] { w.addDamper(damper, -1.0); }) == "duration must be > 0, got -1");
+  CHECK(test::errorOf([&] { w.addForce(std::make_unique<ConstantForce>(Vec2(NAN, 0), std::nullopt), a); }) ==
+        "force must be finite, got (nan, 0)");
+}
+
+TEST_CASE("debug draw: every body, spring and force goes through the interface") {
+  struct Recorder final : DebugDraw {
+    int polygons = 0, circles = 0, segments = 0, points = 0;
+    void drawPolygon(std::span<const Vec2>, const Color&, const Color&) override { ++polygons; }
+    void drawCircle(const Vec2&, double, double, const Color&, const Color&) override { ++circles; }
+    void drawSegment(const Vec2&, const Vec2&, const Color&) override { ++segments; }
+    void drawPoint(const Vec2&, float, const Color&) override { ++points; }
+  };
+  World w;
+  const BodyId box = test::addBox(w, 1, 1, {0, 0});
+  const BodyId ball = test::addCircle(w, 0.5, {3, 0});
+  SpringDef s;
+  s.a = box;
+  s.b = ball;
+  s.stiffness = 1.0;
+  w.addSpring(s);
+  Recorder r;
+  w.draw(r);
+  CHECK(r.polygons == 1);
+  CHECK(r.circles == 1);
+  CHECK(r.segments == 2 * 8 + 3);  // the zigzag: lead-in, 16 slanted strokes, 2 lead-outs
+  DrawOptions opt;
+  opt.shapes = false;
+  opt.springs = false;
+  opt.centers = true;
+  Recorder centers;
+  w.draw(centers, opt);
+  CHECK(centers.points == 2);
+  CHECK(centers.polygons + centers.circles + centers.segments == 0);
+}
