@@ -248,3 +248,45 @@ TEST_CASE("debug draw: every body, spring and force goes through the interface")
   CHECK(centers.points == 2);
   CHECK(centers.polygons + centers.circles + centers.segments == 0);
 }
+
+TEST_CASE("a force that throws leaves the world as before the step") {
+  struct Failing final : Force {
+    int calls = 0;
+    void evaluate(const ForceInput&, ForceOutput& out) override {
+      if (++calls == 3) throw std::runtime_error("script error");  // in the middle of RK4's stages
+      out.a.force = {1, 0};
+    }
+    std::string_view kind() const override { return "failing"; }
+  };
+  World w;
+  const BodyId a = test::addCircle(w, 0.5, {0, 0});
+  const BodyId b = test::addCircle(w, 0.5, {5, 0});
+  w.setVelocity(b, {1, 2});
+  w.addForce(std::make_unique<Failing>(), a);
+  CHECK_THROWS_WITH(w.step(0.1), "script error");
+  CHECK(w.time() == 0.0);
+  CHECK(w.stepCount() == 0);
+  CHECK(w.body(b).position() == Vec2(5, 0));
+  CHECK(w.body(b).velocity == Vec2(1, 2));
+  CHECK(w.body(a).position() == Vec2(0, 0));
+  w.setVelocity(a, {0, 1});  // the world is usable again (not left locked)
+}
+
+TEST_CASE("uids count bodies in creation order and are never reused; kNextStep forces last one step") {
+  World w;
+  w.setGravity(Vec2::Zero());
+  const BodyId a = test::addCircle(w, 0.5, {0, 0});
+  const BodyId b = test::addCircle(w, 0.5, {3, 0});
+  CHECK(w.body(a).uid == 1);
+  CHECK(w.body(b).uid == 2);
+  w.destroyBody(a);
+  const BodyId c = test::addCircle(w, 0.5, {0, 0}, 2.0);
+  CHECK(w.body(c).uid == 3);
+  CHECK(w.findBody(3u) == c);
+  const ForceId push = w.addForce(std::make_unique<ConstantForce>(Vec2(4, 0), std::nullopt), c, {}, World::kNextStep);
+  w.step(0.5);
+  CHECK_FALSE(w.isValid(push));
+  CHECK(w.body(c).velocity.x() == Approx(1.0));  // 4 N on 2 kg for 0.5 s
+  w.step(0.5);
+  CHECK(w.body(c).velocity.x() == Approx(1.0));
+}

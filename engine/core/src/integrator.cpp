@@ -181,11 +181,15 @@ void integrate(WorldImpl& w, double dt) {
   w.const_wrenches.resize(n);
   w.start_velocity.resize(n);
   w.start_angular_velocity.resize(n);
+  w.start_center.resize(n);
+  w.start_angle.resize(n);
   for (auto* v : {&w.rk4.c0, &w.rk4.v0, &w.rk4.dc, &w.rk4.dv}) v->resize(n);
   for (auto* v : {&w.rk4.a0, &w.rk4.w0, &w.rk4.da, &w.rk4.dw}) v->resize(n);
   for (size_t i = 0; i < n; ++i) {
     w.start_velocity[i] = w.bodies[i].velocity;
     w.start_angular_velocity[i] = w.bodies[i].angular_velocity;
+    w.start_center[i] = w.bodies[i].center;
+    w.start_angle[i] = w.bodies[i].angle;
   }
 
   // Split the step at the end times of forces that run out inside it. Without a split the interval

@@ -33,7 +33,22 @@ void World::step(double dt) {
   w.dt = dt;
   w.locked = true;
   const auto t0 = Clock::now();
-  integrate(w, dt);  // origin.md §5: all non-contact forces, RK4 stages included
+  try {
+    integrate(w, dt);  // origin.md §5: all non-contact forces, RK4 stages included
+  } catch (...) {
+    // Only forces can throw, and they run only here: undo the partial integration.
+    for (size_t i = 0; i < w.bodies.size(); ++i) {
+      if (!w.alive[i] || w.bodies[i].isStatic()) continue;
+      Body& b = w.bodies[i];
+      b.center = w.start_center[i];
+      b.angle = w.start_angle[i];
+      b.velocity = w.start_velocity[i];
+      b.angular_velocity = w.start_angular_velocity[i];
+      WorldImpl::syncTransform(b);
+    }
+    w.locked = false;
+    throw;
+  }
   const auto t1 = Clock::now();
   findPairs(w);  // origin.md §7: all pairs, skipping static–static
   const auto t2 = Clock::now();
@@ -73,7 +88,7 @@ void expireForces(WorldImpl& w) {
     ForceEntry& f = w.forces[i];
     // The tolerance absorbs the rounding of the clock: a force of duration 0.5 s added at t = 0
     // expires after the 30th step of 1/60 s even if the sum of the steps is 0.49999999999999994.
-    if (f.alive && f.expires_at <= now + 1e-9 * std::max(1.0, std::abs(now))) {
+    if (f.alive && (f.next_step_only || f.expires_at <= now + 1e-9 * std::max(1.0, std::abs(now)))) {
       f.alive = false;
       f.force.reset();
       ++f.generation;
@@ -211,6 +226,7 @@ BodyId World::createBody(const BodyDef& def) {
   WorldImpl& w = *impl_;
   requireUnlocked(w, "createBody");
   Body b;
+  b.uid = w.next_uid++;
   b.name = def.name;
   b.type = def.type;
   b.shape = validatedShape(def.shape);
@@ -261,6 +277,7 @@ void World::destroyBody(BodyId id) {
   const BodyId old = b.id;
   b = Body{};
   b.id = old;  // keeps the generation, so the next body in this slot gets a new one
+  b.uid = 0;
   w.alive[id.index] = 0;
   w.free_bodies.push_back(id.index);
   // Drop contacts that refer to the slot, so contacts() never names a dead body.
@@ -284,6 +301,12 @@ int World::bodyCount() const { return static_cast<int>(std::count(impl_->alive.b
 std::optional<BodyId> World::findBody(std::string_view name) const {
   for (size_t i = 0; i < impl_->bodies.size(); ++i)
     if (impl_->alive[i] && impl_->bodies[i].name == name) return impl_->bodies[i].id;
+  return std::nullopt;
+}
+
+std::optional<BodyId> World::findBody(uint32_t uid) const {
+  for (size_t i = 0; i < impl_->bodies.size(); ++i)
+    if (impl_->alive[i] && impl_->bodies[i].uid == uid) return impl_->bodies[i].id;
   return std::nullopt;
 }
 
@@ -371,12 +394,14 @@ ForceId World::addForce(std::unique_ptr<Force> force, BodyId a, BodyId b, double
     w.get(b);
     if (a == b) throw InputError("b", "a two-body force needs two different bodies");
   }
-  if (!(duration > 0.0)) throw InputError("duration", "duration must be > 0, got " + formatNumber(duration));
+  if (!(duration > 0.0) && duration != kNextStep)
+    throw InputError("duration", "duration must be > 0, got " + formatNumber(duration));
   ForceEntry e;
   e.force = std::move(force);
   e.a = a;
   e.b = b;
-  e.expires_at = duration == kForever ? kForever : w.clock.t + duration;
+  e.next_step_only = duration == kNextStep;
+  e.expires_at = duration == kForever || e.next_step_only ? kForever : w.clock.t + duration;
   e.alive = true;
   uint32_t index;
   if (!w.free_forces.empty()) {

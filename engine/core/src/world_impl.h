@@ -15,6 +15,7 @@ struct ForceEntry {
   std::unique_ptr<Force> force;
   BodyId a, b;
   double expires_at = World::kForever;  // simulation time at which the force stops acting [s]
+  bool next_step_only = false;          // World::kNextStep: removed after the next step
   uint32_t generation = 0;
   bool alive = false;
 };
@@ -46,6 +47,7 @@ struct WorldImpl {
   SimClock clock;
   double dt = 0.0;  // of the step in progress [s]
   long step_count = 0;
+  uint32_t next_uid = 1;
   bool locked = false;  // true while step() runs
   StepStats stats;
 
@@ -55,6 +57,8 @@ struct WorldImpl {
   std::vector<Wrench> const_wrenches; // per slot: state-independent forces, once per interval
   std::vector<Vec2> start_velocity;   // per slot: velocity at the start of the step (friction choice)
   std::vector<double> start_angular_velocity;
+  std::vector<Vec2> start_center;     // per slot: state at the start of the step, to undo a failed step
+  std::vector<double> start_angle;
   std::vector<double> breakpoints;    // force expiry times inside the current step
   struct Rk4Scratch {
     std::vector<Vec2> c0, v0, dc, dv;

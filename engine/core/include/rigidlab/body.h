@@ -54,6 +54,7 @@ struct BodyDef {
 // so that derived data (transform, bounds, inverse mass) stays consistent.
 struct Body {
   BodyId id;
+  uint32_t uid = 0;  // 1, 2, 3, ... in creation order, never reused: the id scripts and reports show
   std::string name;
   BodyType type = BodyType::Dynamic;
   Shape shape;

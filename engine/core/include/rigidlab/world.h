@@ -121,6 +121,7 @@ class World {
   std::vector<BodyId> bodyIds() const;    // live bodies in creation order
   int bodyCount() const;
   std::optional<BodyId> findBody(std::string_view name) const;  // first body with this name
+  std::optional<BodyId> findBody(uint32_t uid) const;
 
   void setTransform(BodyId id, const Vec2& position, double angle);
   void setVelocity(BodyId id, const Vec2& velocity);
@@ -134,8 +135,10 @@ class World {
 
   // --- forces. `duration` [s]: the force acts for that much simulated time from now and is removed
   // at the end of the step in which it runs out (origin.md §6); infinity = permanent. A step that
-  // straddles the end is split there, so the force acts for exactly `duration`.
+  // straddles the end is split there, so the force acts for exactly `duration`. kNextStep: the
+  // force acts during the next step only, whatever its length.
   static constexpr double kForever = std::numeric_limits<double>::infinity();
+  static constexpr double kNextStep = 0.0;
   ForceId addForce(std::unique_ptr<Force> force, BodyId a, BodyId b = {}, double duration = kForever);
   ForceId addSpring(const SpringDef& def, double duration = kForever);
   ForceId addDamper(const DamperDef& def, double duration = kForever);
@@ -153,6 +156,8 @@ class World {
   // --- simulation
   // Advances by dt [s] > 0: integrate → find pairs → narrow phase → solve contacts → correct
   // positions → expire forces. Edits requested while a step runs (from inside a force) throw.
+  // If a force throws (e.g. a script error), the bodies are restored to their state before the
+  // step and the exception propagates: the world is as if the step had not been called.
   void step(double dt);
   double time() const;             // simulated time [s]
   long stepCount() const;
