@@ -1,0 +1,118 @@
+// A Lua scene: a Lua 5.4 file that defines PopulateWorld(world) and optional hooks, run in its own
+// sandboxed Lua state. The public Lua API (names, fields, errors) is documented in README.md
+// ("Writing scenes") and in scripts/rigidlab.d.lua for editors.
+//
+//   auto scene = rigidlab::lua::Scene::loadFile("scripts/scenes/pyramid.lua");
+//   for (int i = 0; i < 600; ++i) scene->step();   // world step + OnStep hook
+//   scene->runCheck();                              // Check(world), throws SceneError if it fails
+//
+// Every script problem — syntax error, runtime error, bad value, unknown option, a force that
+// returns NaN — surfaces as one SceneError whose message starts with the script's file:line, then
+// the function, then what is wrong and the bad value:
+//   scenes/box.lua:12: add_circle: radius must be > 0, got -1
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "rigidlab/world.h"
+
+namespace rigidlab::lua {
+
+class SceneError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Limits on what one scene's scripts may consume (README "Security").
+struct ScriptLimits {
+  size_t memory_bytes = size_t{256} << 20;  // cap of the scene's Lua allocator
+  size_t source_bytes = size_t{4} << 20;    // largest scene or module file loaded
+};
+
+// Scene-level settings from the script's `scene` table, with their defaults. Gravity, integrator
+// and iterations are applied to the World (read them there).
+struct SceneSettings {
+  std::string title;         // default: the file name
+  double dt = 1.0 / 60.0;    // step size [s]
+  double duration = 10.0;    // length of a headless run when none is given [s]
+  // Initial sandbox camera from `scene.camera = {center = {x, y}, height = h}`: the world point at
+  // the middle of the window and the height of the view in metres. Unset: fit to the scene.
+  std::optional<Vec2> camera_center;
+  std::optional<double> camera_height;
+};
+
+struct SceneOptions {
+  // Where require() looks for modules after the scene's own directory; default: the scripts/
+  // directory of this installation (see scriptsDirectory()).
+  std::vector<std::filesystem::path> module_dirs;
+  // Receives everything the scripts print(); default: standard error.
+  std::function<void(const std::string&)> log;
+  ScriptLimits limits;
+};
+
+// Drawing calls a scene makes from OnDraw(draw), in world coordinates.
+class OverlayDraw {
+ public:
+  virtual ~OverlayDraw() = default;
+  virtual void line(const Vec2& a, const Vec2& b, const Color& color) = 0;
+  virtual void circle(const Vec2& center, double radius, const Color& color) = 0;
+  virtual void text(const Vec2& position, const std::string& text, const Color& color) = 0;
+};
+
+class Scene {
+ public:
+  // Loads and runs the file, reads its `scene` table and calls PopulateWorld(world).
+  static std::unique_ptr<Scene> loadFile(const std::filesystem::path& file, const SceneOptions& options = {});
+  // Same from source text; `name` is what messages show as the file name.
+  static std::unique_ptr<Scene> loadString(std::string_view source, const std::string& name,
+                                           const SceneOptions& options = {});
+  ~Scene();
+  Scene(const Scene&) = delete;
+  Scene& operator=(const Scene&) = delete;
+
+  World& world();
+  const World& world() const;
+  const SceneSettings& settings() const;
+  void setDt(double dt);  // validated, > 0
+  // The file as given to loadFile (empty for loadString) and every module it require()d, for
+  // hot reload.
+  const std::filesystem::path& file() const;
+  std::vector<std::filesystem::path> sourceFiles() const;
+
+  // One world step of settings().dt (or `dt`), then OnStep(world, dt) if the scene defines it.
+  // A script error (in a Lua force or in OnStep) throws SceneError; a force error leaves the world
+  // as it was before the step.
+  void step();
+  void step(double dt);
+
+  bool hasCheck() const;
+  void runCheck();  // Check(world); throws SceneError if it raises
+  bool hasOnStep() const;
+  bool hasOnKey() const;
+  void onKey(const std::string& key);  // OnKey(world, key); key names as SDL's, lower case ("space", "a")
+  bool hasOnDraw() const;
+  void onDraw(OverlayDraw& draw);  // OnDraw(draw)
+
+  // Calls made from C++ into Lua so far (hooks and force evaluations): a scene without Lua forces
+  // makes none during a step.
+  long luaCalls() const;
+
+  struct Impl;
+
+ private:
+  explicit Scene(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+// The scripts/ directory (Lua modules, scenes): $RIGIDLAB_SCRIPTS if set, else the source tree's
+// scripts/ that this binary was built from.
+std::filesystem::path scriptsDirectory();
+
+}  // namespace rigidlab::lua
