@@ -1,0 +1,30 @@
+// Saving a world as a Lua scene file that loads back to the same state (sandbox "Save").
+//
+// The file holds data only: a `scene` settings table, a `data` table of bodies (shape, material,
+// mass, state), built-in springs and dampers, and a PopulateWorld that hands the data to the
+// scripts/saved_world.lua module. It is written atomically: a temporary file in the same directory,
+// flushed and fsync'ed, renamed over the target, then the directory fsync'ed; a save killed
+// mid-write leaves the old file or the new one, never a torn one.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "rigidlab/lua/scene.h"
+#include "rigidlab/world.h"
+
+namespace rigidlab::lua {
+
+// The scene file's text. Numbers are written with 17 significant digits (bit-exact round trip).
+std::string sceneSource(const World& world, const SceneSettings& settings);
+
+// Writes sceneSource() to `path` atomically. Throws SceneError("<path>: <reason>") on failure,
+// leaving any existing file untouched and no temporary file behind.
+void saveScene(const World& world, const SceneSettings& settings, const std::filesystem::path& path);
+
+// Temporary files a killed save may have left next to `path`'s directory entries ("*.rigidlab-tmp-*");
+// removes them. The sandbox calls it at start; the file watcher ignores such names.
+void removeStaleTemporaries(const std::filesystem::path& directory);
+bool isTemporaryName(const std::filesystem::path& file);
+
+}  // namespace rigidlab::lua
