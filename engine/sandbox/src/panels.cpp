@@ -1,0 +1,423 @@
+// Dear ImGui panels (panels.h). Layout for a 1280×720 window: controls on the left, readouts on
+// the right, the world in between; windows can be moved and collapsed.
+#include "panels.h"
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "renderer.h"
+#include "rigidlab/lua/scene_writer.h"
+#include "tools.h"
+
+namespace rigidlab::sandbox {
+
+namespace {
+
+constexpr float kLeftWidth = 280.0f, kRightWidth = 320.0f, kMargin = 8.0f;
+const ImVec4 kErrorColor(1.0f, 0.45f, 0.4f, 1.0f), kWarnColor(1.0f, 0.8f, 0.3f, 1.0f), kDimColor(0.6f, 0.6f, 0.65f, 1.0f);
+
+bool inputDouble(const char* label, double* v, const char* format = "%.6g", bool read_only = false) {
+  return ImGui::InputScalar(label, ImGuiDataType_Double, v, nullptr, nullptr, format,
+                            read_only ? ImGuiInputTextFlags_ReadOnly : 0);
+}
+bool inputVec(const char* label, Vec2* v, const char* format = "%.6g", bool read_only = false) {
+  return ImGui::InputScalarN(label, ImGuiDataType_Double, v->data(), 2, nullptr, nullptr, format,
+                             read_only ? ImGuiInputTextFlags_ReadOnly : 0);
+}
+
+void sceneSection(Session& s) {
+  const lua::SceneSettings& settings = s.scene->settings();
+  ImGui::TextWrapped("%s", settings.title.c_str());
+  if (!s.file.empty()) ImGui::TextColored(kDimColor, "%s", s.file.filename().string().c_str());
+  if (s.paused) ImGui::TextColored(kWarnColor, "PAUSED   t = %.3f s   step %ld", s.world().time(), s.world().stepCount());
+  else ImGui::Text("running  t = %.3f s   step %ld", s.world().time(), s.world().stepCount());
+
+  if (ImGui::Button(s.paused ? "Resume" : "Pause")) setPaused(s, !s.paused);
+  ImGui::SameLine();
+  if (ImGui::Button("Step")) stepOnce(s);
+  ImGui::SameLine();
+  if (ImGui::Button("Reset") && !s.file.empty()) requestLoad(s, s.file, LoadPurpose::Reset);
+  ImGui::SameLine();
+  if (ImGui::Button("Fit")) fitCamera(s);
+  ImGui::BeginDisabled(!s.undo.canUndo());
+  if (ImGui::Button("Undo")) undo(s);
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!s.undo.canRedo());
+  if (ImGui::Button("Redo")) redo(s);
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  if (ImGui::Button("Save as...")) {
+    s.save = {true, suggestSavePath(s).string(), "", false};
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Scenes")) s.show_browser = !s.show_browser;
+  if (s.undo.canUndo()) ImGui::TextColored(kDimColor, "undo: %s", s.undo.undoLabel().c_str());
+}
+
+void toolsSection(Session& s) {
+  ToolState& t = s.tools;
+  for (const Tool tool : {Tool::Select, Tool::Circle, Tool::Box, Tool::Polygon}) {
+    if (ImGui::RadioButton(toolName(tool), t.tool == tool)) selectTool(s, tool);
+    if (tool == Tool::Select || tool == Tool::Box) ImGui::SameLine();  // two per row
+  }
+  ImGui::PushItemWidth(120);
+  if (t.tool == Tool::Circle) inputDouble("radius [m]", &t.circle_radius);
+  if (t.tool == Tool::Box) {
+    inputDouble("width [m]", &t.box_width);
+    inputDouble("height [m]", &t.box_height);
+  }
+  if (t.tool != Tool::Select) {
+    inputDouble("density [kg/m2]", &t.density);
+    inputDouble("restitution", &t.restitution, "%.3g");
+    inputDouble("friction", &t.friction, "%.3g");
+    ImGui::Checkbox("static", &t.make_static);
+  }
+  ImGui::PopItemWidth();
+  t.circle_radius = std::max(t.circle_radius, 0.01);
+  t.box_width = std::max(t.box_width, 0.01);
+  t.box_height = std::max(t.box_height, 0.01);
+  t.density = std::max(t.density, 1e-6);
+  t.restitution = std::clamp(t.restitution, 0.0, 1.0);
+  t.friction = std::max(t.friction, 0.0);
+  if (t.tool == Tool::Polygon)
+    ImGui::TextColored(kDimColor, "%zu point(s); Enter or click the first to close", t.polygon.size());
+}
+
+void worldSection(Session& s) {
+  World& w = s.world();
+  WorldOverrides& o = s.overrides;
+  ImGui::PushItemWidth(150);
+  Vec2 g = w.settings().gravity;
+  if (inputVec("gravity [m/s2]", &g) && isFinite(g)) o.gravity = g;
+  const Integrator integrators[] = {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler, Integrator::RungeKutta4};
+  const std::string current(integratorName(w.settings().integrator));
+  if (ImGui::BeginCombo("integrator", current.c_str())) {
+    for (const Integrator i : integrators) {
+      const std::string name(integratorName(i));
+      if (ImGui::Selectable(name.c_str(), i == w.settings().integrator)) o.integrator = i;
+    }
+    ImGui::EndCombo();
+  }
+  double dt_ms = s.dt() * 1000.0;
+  if (inputDouble("dt [ms]", &dt_ms, "%.4g") && dt_ms > 0.01 && dt_ms <= 1000.0) o.dt = dt_ms / 1000.0;
+  int iterations = w.settings().iterations;
+  if (ImGui::InputInt("iterations", &iterations) && iterations >= 1 && iterations <= 10000) o.iterations = iterations;
+  bool warm = w.settings().warm_starting;
+  if (ImGui::Checkbox("warm starting", &warm)) o.warm_starting = warm;
+  applyOverrides(s);
+  if (o.any()) {
+    ImGui::TextColored(kWarnColor, "changed here: kept across reloads");
+    if (ImGui::Button("use the scene's values")) clearOverrides(s);
+  }
+
+  ImGui::Separator();
+  ImGui::TextUnformatted("loop");
+  int mode = s.loop.mode == LoopMode::Fixed ? 0 : 1;
+  if (ImGui::RadioButton("fixed step", &mode, 0) | ImGui::RadioButton("variable step", &mode, 1)) {
+    s.loop.mode = mode == 0 ? LoopMode::Fixed : LoopMode::Variable;
+    s.clock.reset();
+  }
+  ImGui::SliderInt("max steps/frame", &s.loop.max_steps_per_frame, 1, 64);
+  float cap = static_cast<float>(s.loop.frame_cap_hz);
+  if (ImGui::SliderFloat("frame cap [Hz]", &cap, 0.0f, 240.0f, cap == 0.0f ? "none" : "%.0f"))
+    s.loop.frame_cap_hz = cap;
+  float scale = static_cast<float>(s.loop.time_scale);
+  if (ImGui::SliderFloat("time scale", &scale, 0.05f, 4.0f, "%.2fx", ImGuiSliderFlags_Logarithmic))
+    s.loop.time_scale = scale;
+  ImGui::PopItemWidth();
+}
+
+void drawSection(Session& s) {
+  DrawToggles& d = s.draw;
+  ImGui::Checkbox("grid", &d.grid);
+  ImGui::SameLine();
+  ImGui::Checkbox("springs", &d.springs);
+  ImGui::SameLine();
+  ImGui::Checkbox("forces", &d.forces);
+  ImGui::Checkbox("contacts (F2)", &d.contacts);
+  ImGui::SameLine();
+  ImGui::Checkbox("normals (F3)", &d.normals);
+  ImGui::Checkbox("impulses (F4)", &d.impulses);
+  ImGui::SameLine();
+  ImGui::Checkbox("bounds (F6)", &d.aabbs);
+  ImGui::Checkbox("centres (F7)", &d.centers);
+  ImGui::SameLine();
+  ImGui::Checkbox("velocities (F8)", &d.velocities);
+}
+
+void controlsWindow(Session& s) {
+  ImGui::SetNextWindowPos(ImVec2(kMargin, kMargin), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(kLeftWidth, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("rigidlab");
+  sceneSection(s);
+  if (ImGui::CollapsingHeader("Tools", ImGuiTreeNodeFlags_DefaultOpen)) toolsSection(s);
+  if (ImGui::CollapsingHeader("World settings")) worldSection(s);
+  if (ImGui::CollapsingHeader("Draw")) drawSection(s);
+  ImGui::TextColored(kDimColor, "F1: all shortcuts");
+  ImGui::End();
+}
+
+void browserWindow(Session& s, PanelState& p) {
+  if (!s.show_browser) {
+    p.browser_was_open = false;
+    return;
+  }
+  if (!p.browser_was_open) p.scenes = browsableScenes();  // fresh list each time it opens
+  p.browser_was_open = true;
+  const ImVec2 size(kLeftWidth, 300);
+  ImGui::SetNextWindowPos(ImVec2(kMargin + kLeftWidth + kMargin, kMargin), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(size, ImGuiCond_FirstUseEver);
+  if (ImGui::Begin("Scenes", &s.show_browser)) {
+    ImGui::TextColored(kDimColor, "%s", (lua::scriptsDirectory() / "scenes").string().c_str());
+    if (ImGui::SmallButton("refresh")) p.scenes = browsableScenes();
+    if (p.scenes.empty()) ImGui::TextColored(kWarnColor, "no scenes found");
+    for (const auto& file : p.scenes) {
+      std::error_code ec;
+      const bool current = !s.file.empty() && std::filesystem::equivalent(file, s.file, ec);
+      if (ImGui::Selectable(file.stem().string().c_str(), current)) requestLoad(s, file, LoadPurpose::Open);
+    }
+    if (s.loader.busy()) ImGui::TextColored(kDimColor, "loading...");
+  }
+  ImGui::End();
+}
+
+void statisticsWindow(Session& s, PanelState& p, Renderer& r) {
+  const ImGuiIO& io = ImGui::GetIO();
+  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - kRightWidth - kMargin, kMargin), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(kRightWidth, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Statistics");
+  p.fps = p.fps == 0.0 ? io.Framerate : 0.9 * p.fps + 0.1 * io.Framerate;
+  ImGui::Text("%.0f fps   work %.2f ms   %d step(s) %.2f ms", p.fps, s.last_frame_ms, s.steps_last_frame, s.last_steps_ms);
+  const double ratio = s.meter.ratio();
+  if (!s.paused && ratio < 0.97 * s.loop.time_scale)
+    ImGui::TextColored(kErrorColor, "slower than real time: %.0f%%", 100.0 * ratio / s.loop.time_scale);
+  else
+    ImGui::Text("simulated/real time %.2f   %s", ratio, s.loop.mode == LoopMode::Fixed ? "fixed step" : "variable step");
+  const StepStats& st = s.world().stats();
+  if (ImGui::BeginTable("stages", 2, ImGuiTableFlags_SizingStretchProp)) {
+    const std::pair<const char*, double> rows[] = {
+        {"integrate (forces)", st.integrate_ms}, {"broad phase", st.broad_phase_ms}, {"narrow phase", st.narrow_phase_ms},
+        {"solve", st.solve_ms}, {"correct positions", st.correct_ms}, {"finish", st.finish_ms}, {"step total", st.total_ms()}};
+    for (const auto& [name, ms] : rows) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(name);
+      ImGui::TableNextColumn();
+      ImGui::Text("%.3f ms", ms);
+    }
+    ImGui::EndTable();
+  }
+  ImGui::Text("bodies %d (%d dynamic)   forces %d", st.bodies, st.dynamic_bodies, st.forces);
+  ImGui::Text("pairs %d   contacts %d   points %d", st.pairs, st.contacts, st.contact_points);
+  ImGui::Text("force evaluations %ld   Lua calls %ld", st.force_evaluations, s.scene->luaCalls());
+  ImGui::TextColored(kDimColor, "reloads %d   last load %.1f ms", s.reloads, s.last_load_ms);
+  ImGui::TextColored(kDimColor, "watch: %s   %zu vertices drawn", s.watcher.usingInotify() ? "inotify" : "polling",
+                     r.vertexCount());
+  ImGui::End();
+}
+
+void energyWindow(Session& s) {
+  const ImGuiIO& io = ImGui::GetIO();
+  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - kRightWidth - kMargin, 282), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(kRightWidth, 220), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Energy");
+  const float text_rows = 3 * ImGui::GetTextLineHeightWithSpacing() + 8;
+  drawEnergyPlot(s.energy, std::max(60.0f, ImGui::GetContentRegionAvail().y - text_rows));
+  ImGui::End();
+}
+
+void bodyWindow(Session& s, PanelState& p) {
+  World& w = s.world();
+  if (!w.isValid(s.selected)) {
+    p.edit_before.reset();
+    return;
+  }
+  const ImGuiIO& io = ImGui::GetIO();
+  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - kRightWidth - kMargin, 510), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(kRightWidth, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Body");
+  const Body& b = w.body(s.selected);
+  ImGui::Text("#%u %s   area %.4g m2   I %.4g kg m2", b.uid, b.shape.type == ShapeType::Circle ? "circle" : "polygon",
+              b.area, b.inertia);
+  const bool editable = s.paused;
+  if (!editable) ImGui::TextColored(kDimColor, "pause (Space) to edit");
+  const BodyProps current = captureProps(w, s.selected);
+  BodyProps edited = current;
+  bool activated = false, committed = false;
+  const auto track = [&] {
+    activated = activated || ImGui::IsItemActivated();
+    committed = committed || ImGui::IsItemDeactivatedAfterEdit();
+  };
+  ImGui::PushItemWidth(170);
+  ImGui::BeginDisabled(!editable);
+  ImGui::InputText("name", &edited.name);
+  track();
+  bool is_static = edited.type == BodyType::Static;
+  if (ImGui::Checkbox("static", &is_static)) edited.type = is_static ? BodyType::Static : BodyType::Dynamic;
+  track();
+  inputDouble("mass [kg]", &edited.mass);
+  track();
+  inputDouble("restitution", &edited.material.restitution, "%.4g");
+  track();
+  inputDouble("friction", &edited.material.friction, "%.4g");
+  track();
+  inputDouble("static friction", &edited.material.static_friction, "%.4g");
+  track();
+  inputVec("position [m]", &edited.position);
+  track();
+  double degrees = edited.angle * 180.0 / std::numbers::pi;
+  if (inputDouble("angle [deg]", &degrees)) edited.angle = degrees * std::numbers::pi / 180.0;
+  track();
+  inputVec("velocity [m/s]", &edited.velocity);
+  track();
+  inputDouble("angular velocity [rad/s]", &edited.angular_velocity);
+  track();
+  ImGui::EndDisabled();
+  ImGui::PopItemWidth();
+  if (editable) {
+    if (activated && !p.edit_before) {
+      p.edit_before = current;
+      p.edit_body = s.selected;
+    }
+    if (!(edited == current)) {
+      try {
+        applyProps(w, s.selected, edited);
+        s.history.capture(w);
+      } catch (const std::exception& e) {
+        applyProps(w, s.selected, current);  // the last good values stay
+        s.setStatus(std::string("refused: ") + e.what());
+      }
+    }
+    if (committed && p.edit_before && p.edit_body == s.selected) {
+      s.undo.recordModify(s.selected, *p.edit_before, captureProps(w, s.selected), "edit body #" + std::to_string(b.uid));
+      p.edit_before.reset();
+    }
+  }
+  if (ImGui::Button("Delete")) deleteBody(s, s.selected);
+  ImGui::End();
+}
+
+void helpWindow(Session& s) {
+  if (!s.show_help) return;
+  const ImGuiIO& io = ImGui::GetIO();
+  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  ImGui::SetNextWindowSize(ImVec2(640, 0), ImGuiCond_Appearing);
+  if (ImGui::Begin("Shortcuts (F1)", &s.show_help)) {
+    if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
+      for (const Shortcut& k : shortcuts()) {
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::TextColored(kWarnColor, "%s", k.keys);
+        ImGui::TableNextColumn();
+        ImGui::TextWrapped("%s", k.action);
+      }
+      ImGui::EndTable();
+    }
+  }
+  ImGui::End();
+}
+
+void saveDialog(Session& s) {
+  SaveDialog& d = s.save;
+  if (d.open) {
+    ImGui::OpenPopup("Save world");
+    d.open = false;
+  }
+  const ImGuiIO& io = ImGui::GetIO();
+  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.3f), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  if (!ImGui::BeginPopupModal("Save world", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
+  ImGui::TextUnformatted("Save the world (bodies, springs, dampers, settings, camera) as a new scene file:");
+  ImGui::SetNextItemWidth(520);
+  if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
+  if (ImGui::InputText("##path", &d.path)) d.confirm_overwrite = false;
+  std::error_code ec;
+  const bool exists = std::filesystem::exists(d.path, ec);
+  if (exists && !d.confirm_overwrite && d.message.empty())
+    ImGui::TextColored(kWarnColor, "%s exists: saving replaces it", d.path.c_str());
+  if (!d.message.empty()) ImGui::TextColored(kErrorColor, "%s", d.message.c_str());
+  const char* label = exists && !d.confirm_overwrite ? "Replace..." : "Save";
+  if (ImGui::Button(label) || (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Enter)) && !exists)) {
+    if (exists && !d.confirm_overwrite) {
+      d.confirm_overwrite = true;  // a second click replaces
+      d.message = "click Save again to replace " + d.path;
+    } else if (saveWorld(s, d.path, d.message)) {
+      ImGui::CloseCurrentPopup();
+    }
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) ImGui::CloseCurrentPopup();
+  ImGui::EndPopup();
+}
+
+void errorOverlay(Session& s) {
+  std::string heading, text;
+  if (!s.run_error.empty()) {
+    heading = "Script error: simulation paused (Space resumes, R resets)";
+    text = s.run_error;
+  } else if (!s.load_error.empty()) {
+    heading = s.scene_loaded ? "Reload failed: the last good world keeps running until the next good save"
+                             : "The scene did not load: fix the file and save it";
+    text = s.load_error;
+  } else if (!s.draw_error.empty()) {
+    heading = "OnDraw failed: overlay off until the scene reloads";
+    text = s.draw_error;
+  } else {
+    return;
+  }
+  const ImGuiIO& io = ImGui::GetIO();
+  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, kMargin), ImGuiCond_Always, ImVec2(0.5f, 0.0f));
+  ImGui::SetNextWindowSizeConstraints(ImVec2(300, 0), ImVec2(std::min(760.0f, io.DisplaySize.x - 40), 400));
+  ImGui::PushStyleColor(ImGuiCol_WindowBg, ImVec4(0.35f, 0.05f, 0.05f, 0.92f));
+  ImGui::Begin("##error", nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoFocusOnAppearing |
+                   ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove);
+  ImGui::TextColored(kWarnColor, "%s", heading.c_str());
+  ImGui::PushTextWrapPos(std::min(740.0f, io.DisplaySize.x - 60));
+  ImGui::TextUnformatted(text.c_str());
+  ImGui::PopTextWrapPos();
+  ImGui::End();
+  ImGui::PopStyleColor();
+}
+
+void statusLine(Session& s) {
+  ImDrawList* dl = ImGui::GetForegroundDrawList();
+  const ImGuiIO& io = ImGui::GetIO();
+  std::string line = std::string("tool: ") + toolName(s.tools.tool);
+  if (s.paused) line += "   PAUSED";
+  const double ratio = s.meter.ratio();
+  const bool slow = !s.paused && ratio < 0.97 * s.loop.time_scale;
+  if (slow) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "   SLOWER THAN REAL TIME (%.0f%%)", 100.0 * ratio / s.loop.time_scale);
+    line += buffer;
+  }
+  if (Session::Clock::now() < s.status_until) line += "   " + s.status;
+  const ImVec2 size = ImGui::CalcTextSize(line.c_str());
+  const ImVec2 at((io.DisplaySize.x - size.x) * 0.5f, io.DisplaySize.y - size.y - 6);
+  dl->AddRectFilled(ImVec2(at.x - 6, at.y - 3), ImVec2(at.x + size.x + 6, at.y + size.y + 3), IM_COL32(0, 0, 0, 150), 4);
+  dl->AddText(at, slow ? IM_COL32(255, 120, 100, 255) : IM_COL32(220, 220, 225, 255), line.c_str());
+}
+
+}  // namespace
+
+void drawPanels(Session& s, PanelState& p, Renderer& renderer) {
+  if (s.show_panels) {
+    controlsWindow(s);
+    statisticsWindow(s, p, renderer);
+    energyWindow(s);
+    bodyWindow(s, p);
+  }
+  browserWindow(s, p);
+  helpWindow(s);
+  saveDialog(s);
+  errorOverlay(s);
+  statusLine(s);
+}
+
+}  // namespace rigidlab::sandbox

@@ -1,0 +1,368 @@
+// Sandbox state operations: loading and swapping scenes, stepping, edits, saving (session.h).
+#include "session.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "rigidlab/lua/scene_writer.h"
+
+namespace rigidlab::sandbox {
+
+namespace fs = std::filesystem;
+
+void Session::setStatus(std::string message, double seconds) {
+  status = std::move(message);
+  status_until = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+}
+
+namespace {
+
+std::unique_ptr<lua::Scene> emptyScene(const lua::SceneOptions& options) {
+  return lua::Scene::loadString("function PopulateWorld(world) end", "(no scene)", options);
+}
+
+fs::path comparable(const fs::path& p) {
+  std::error_code ec;
+  fs::path r = fs::weakly_canonical(fs::absolute(p, ec), ec);
+  return ec ? p.lexically_normal() : r;
+}
+
+WorldOverrides currentValues(const lua::Scene& scene) {
+  const WorldDef& def = scene.world().settings();
+  return {def.gravity, def.integrator, def.iterations, scene.settings().dt, def.warm_starting};
+}
+
+void placeCamera(Session& s) {
+  const lua::SceneSettings& settings = s.scene->settings();
+  if (const auto box = worldBounds(s.world())) {
+    s.camera.fit(*box);
+  } else {
+    s.camera.center = Vec2::Zero();
+    s.camera.setHeightMetres(20.0);
+  }
+  if (settings.camera_height) s.camera.setHeightMetres(*settings.camera_height);
+  if (settings.camera_center) s.camera.center = *settings.camera_center;
+}
+
+void afterWorldChange(Session& s) {
+  s.history.capture(s.world());  // an edited body is drawn where it is, not interpolated
+}
+
+}  // namespace
+
+void startSession(Session& s, const fs::path& file) {
+  s.file = file;
+  s.scene_loaded = false;
+  if (!file.empty()) {
+    lua::removeStaleTemporaries(file.has_parent_path() ? file.parent_path() : fs::path("."));
+    adoptScene(s, SceneLoader::loadNow(file, LoadPurpose::Open, s.scene_options));
+  }
+  if (!s.scene) {
+    s.scene = emptyScene(s.scene_options);
+    s.scene_values = currentValues(*s.scene);
+    placeCamera(s);
+  }
+}
+
+void adoptScene(Session& s, LoadResult r) {
+  if (!r.scene) {
+    s.load_error = r.error;
+    std::fprintf(stderr, "rigidlab: %s%s\n", r.purpose == LoadPurpose::Open ? "" : "reload failed: ", r.error.c_str());
+    std::fflush(stderr);
+    if (!s.scene_loaded) {
+      // Nothing good to keep yet: watch the file the user is fixing.
+      s.file = r.file;
+      s.watcher.watch({r.file});
+    }
+    return;
+  }
+  if (s.scene) cancelGesture(s);  // its drag force belongs to the old world
+  const bool first = !s.scene_loaded;
+  const bool keep_view = r.purpose != LoadPurpose::Open && !first;
+  s.scene = std::move(r.scene);
+  s.file = r.file;
+  s.scene_loaded = true;
+  s.last_load_ms = r.load_ms;
+  s.load_error.clear();
+  s.run_error.clear();
+  s.draw_error.clear();
+  s.scene_values = currentValues(*s.scene);
+  if (keep_view) {
+    applyOverrides(s);
+  } else {
+    s.overrides = {};
+    s.paused = false;
+    placeCamera(s);
+  }
+  s.undo.clear();
+  s.history.clear();
+  s.energy.clear();
+  s.energy.sample(s.world());
+  s.selected = {};
+  s.tools.polygon.clear();
+  s.clock.reset();
+  s.meter.reset();
+  s.watcher.watch(s.scene->sourceFiles());
+  if (r.purpose != LoadPurpose::Open) ++s.reloads;
+  if (r.purpose == LoadPurpose::Reload) {
+    // Tests and tools wait for this exact line.
+    std::printf("reloaded %s\n", s.file.string().c_str());
+    std::fflush(stdout);
+  } else if (r.purpose == LoadPurpose::Reset) {
+    s.setStatus("reset: " + s.file.filename().string());
+  }
+}
+
+void requestLoad(Session& s, const fs::path& file, LoadPurpose purpose) {
+  s.loader.start(file, purpose, s.scene_options);
+}
+
+void updateHotReload(Session& s, Session::Clock::time_point now) {
+  if (!s.file.empty() && s.watcher.poll(now)) requestLoad(s, s.file, LoadPurpose::Reload);
+  if (auto r = s.loader.poll()) adoptScene(s, std::move(*r));
+}
+
+namespace {
+
+// One step with the error policy of the issue: a failing script pauses the run and says why.
+bool guardedStep(Session& s, double dt) {
+  try {
+    s.scene->step(dt);
+    return true;
+  } catch (const std::exception& e) {
+    s.run_error = e.what();
+  }
+  std::fprintf(stderr, "rigidlab: paused: %s\n", s.run_error.c_str());
+  std::fflush(stderr);
+  setPaused(s, true);
+  return false;
+}
+
+}  // namespace
+
+void advance(Session& s, double frame_seconds) {
+  s.steps_last_frame = 0;
+  s.behind = false;
+  if (s.paused) {
+    s.alpha = 1.0;
+    return;
+  }
+  const FramePlan plan = s.clock.plan(frame_seconds, s.dt(), s.loop);
+  const auto t0 = Session::Clock::now();
+  for (int i = 0; i < plan.steps; ++i) {
+    s.history.capture(s.world());
+    if (!guardedStep(s, plan.step_dt)) break;
+    ++s.steps_last_frame;
+  }
+  s.last_steps_ms = std::chrono::duration<double, std::milli>(Session::Clock::now() - t0).count();
+  s.alpha = s.paused ? 1.0 : plan.alpha;
+  s.behind = plan.behind;
+  s.meter.add(frame_seconds, s.steps_last_frame * plan.step_dt);
+  if (s.steps_last_frame > 0) s.energy.sample(s.world());
+}
+
+void stepOnce(Session& s) {
+  setPaused(s, true);
+  s.history.capture(s.world());
+  s.run_error.clear();
+  if (guardedStep(s, s.dt())) s.energy.sample(s.world());
+  s.alpha = 1.0;
+}
+
+void setPaused(Session& s, bool paused) {
+  if (paused == s.paused) return;
+  cancelGesture(s);
+  if (!paused) {
+    s.clock.reset();  // the paused time is not owed to the simulation
+    s.run_error.clear();
+  }
+  s.paused = paused;
+}
+
+void applyOverrides(Session& s) {
+  World& w = s.world();
+  const WorldOverrides& o = s.overrides;
+  try {
+    if (o.gravity) w.setGravity(*o.gravity);
+    if (o.integrator) w.setIntegrator(*o.integrator);
+    if (o.iterations) w.setIterations(*o.iterations);
+    if (o.warm_starting) w.setWarmStarting(*o.warm_starting);
+    if (o.dt) s.scene->setDt(*o.dt);
+  } catch (const std::exception& e) {
+    s.setStatus(std::string("setting refused: ") + e.what());
+  }
+}
+
+void clearOverrides(Session& s) {
+  s.overrides = s.scene_values;  // apply the scene's values once, then forget the overrides
+  applyOverrides(s);
+  s.overrides = {};
+}
+
+std::optional<Aabb> worldBounds(const World& world) {
+  std::optional<Aabb> box;
+  for (const BodyId id : world.bodyIds()) {
+    const Body& b = world.body(id);
+    const Aabb a = computeAabb(b.shape, b.xf);
+    if (!box) {
+      box = a;
+    } else {
+      box->lower = box->lower.cwiseMin(a.lower);
+      box->upper = box->upper.cwiseMax(a.upper);
+    }
+  }
+  return box;
+}
+
+void fitCamera(Session& s) {
+  if (const auto box = worldBounds(s.world())) s.camera.fit(*box);
+}
+
+namespace {
+
+std::string describe(const World& world, BodyId id) {
+  const Body& b = world.body(id);
+  const std::string shape = b.shape.type == ShapeType::Circle ? "circle" : "polygon";
+  return b.name.empty() ? shape + " #" + std::to_string(b.uid) : "'" + b.name + "'";
+}
+
+}  // namespace
+
+BodyId addBody(Session& s, const BodyDef& def, const std::string& label) {
+  try {
+    const BodyId id = s.world().createBody(def);
+    s.undo.recordCreate(s.world(), id, label);
+    s.selected = id;
+    afterWorldChange(s);
+    return id;
+  } catch (const std::exception& e) {
+    s.setStatus("cannot add " + label + ": " + e.what());
+    return {};
+  }
+}
+
+void deleteBody(Session& s, BodyId id) {
+  if (!s.world().isValid(id)) return;
+  if (s.tools.body == id) cancelGesture(s);
+  const std::string label = "delete " + describe(s.world(), id);
+  s.undo.destroy(s.world(), id, label);
+  if (s.selected == id) s.selected = {};
+  afterWorldChange(s);
+}
+
+void toggleStatic(Session& s, BodyId id) {
+  if (!s.world().isValid(id)) return;
+  if (s.tools.body == id) cancelGesture(s);
+  const BodyProps before = captureProps(s.world(), id);
+  const bool to_static = !s.world().body(id).isStatic();
+  s.world().setType(id, to_static ? BodyType::Static : BodyType::Dynamic);
+  s.undo.recordModify(id, before, captureProps(s.world(), id),
+                      std::string(to_static ? "make static " : "make dynamic ") + describe(s.world(), id));
+  afterWorldChange(s);
+}
+
+void undo(Session& s) {
+  cancelGesture(s);
+  const std::string label = s.undo.undoLabel();
+  try {
+    if (s.undo.undo(s.world())) {
+      s.selected = s.undo.lastTouched();
+      s.setStatus("undone: " + label);
+    } else if (!label.empty()) {
+      s.setStatus("cannot undo: the body was removed by the scene; history cleared");
+    }
+  } catch (const std::exception& e) {
+    s.setStatus(std::string("undo failed: ") + e.what());
+  }
+  afterWorldChange(s);
+}
+
+void redo(Session& s) {
+  cancelGesture(s);
+  const std::string label = s.undo.redoLabel();
+  try {
+    if (s.undo.redo(s.world())) {
+      s.selected = s.undo.lastTouched();
+      s.setStatus("redone: " + label);
+    } else if (!label.empty()) {
+      s.setStatus("cannot redo: the body was removed by the scene; history cleared");
+    }
+  } catch (const std::exception& e) {
+    s.setStatus(std::string("redo failed: ") + e.what());
+  }
+  afterWorldChange(s);
+}
+
+void cancelGesture(Session& s) {
+  ToolState& t = s.tools;
+  World& w = s.world();
+  switch (t.gesture) {
+    case ToolState::Gesture::Drag:
+      if (w.isValid(t.drag_force)) w.removeForce(t.drag_force);
+      break;
+    case ToolState::Gesture::Move:
+    case ToolState::Gesture::Rotate:
+      if (w.isValid(t.body))
+        s.undo.recordModify(t.body, t.before, captureProps(w, t.body),
+                            std::string(t.gesture == ToolState::Gesture::Move ? "move " : "rotate ") + describe(w, t.body));
+      break;
+    default:
+      break;
+  }
+  t.gesture = ToolState::Gesture::None;
+  t.drag_force = {};
+  t.body = {};
+}
+
+bool saveWorld(Session& s, const fs::path& path, std::string& message) {
+  if (path.empty()) {
+    message = "give a file name";
+    return false;
+  }
+  const fs::path target = comparable(path);
+  std::vector<fs::path> protected_files = s.scene->sourceFiles();
+  if (!s.file.empty()) protected_files.push_back(s.file);
+  for (const fs::path& f : protected_files) {
+    if (comparable(f) == target) {
+      message = path.string() + " is the open scene (or a module it uses); choose a new name";
+      return false;
+    }
+  }
+  lua::SceneSettings settings = s.scene->settings();
+  settings.camera_center = s.camera.center;
+  settings.camera_height = s.camera.heightMetres();
+  try {
+    lua::saveScene(s.world(), settings, path);
+  } catch (const std::exception& e) {
+    message = e.what();
+    return false;
+  }
+  message.clear();
+  s.setStatus("saved " + path.string());
+  std::printf("saved %s\n", path.string().c_str());
+  std::fflush(stdout);
+  return true;
+}
+
+fs::path suggestSavePath(const Session& s) {
+  const fs::path dir = s.file.has_parent_path() ? s.file.parent_path() : fs::path(".");
+  const std::string stem = s.file.empty() ? "world" : s.file.stem().string();
+  for (int i = 1;; ++i) {
+    const fs::path candidate = dir / (stem + "_saved" + (i == 1 ? "" : "_" + std::to_string(i)) + ".lua");
+    std::error_code ec;
+    if (!fs::exists(candidate, ec)) return candidate;
+  }
+}
+
+std::vector<fs::path> browsableScenes() {
+  std::vector<fs::path> scenes;
+  std::error_code ec;
+  for (fs::directory_iterator it(lua::scriptsDirectory() / "scenes", ec), end; !ec && it != end; it.increment(ec)) {
+    const fs::path& p = it->path();
+    if (p.extension() == ".lua" && !lua::isTemporaryName(p)) scenes.push_back(p);
+  }
+  std::sort(scenes.begin(), scenes.end());
+  return scenes;
+}
+
+}  // namespace rigidlab::sandbox

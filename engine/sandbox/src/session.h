@@ -1,0 +1,163 @@
+// The sandbox's state and the operations on it, independent of SDL, OpenGL and ImGui (so tests can
+// drive it): the running scene (the Model, origin.md §11), the camera and draw settings (the View's
+// state), and what the Controller keeps between frames — loop timing, pause, selection, undo
+// history, hot reload, error overlays.
+#pragma once
+
+#include <chrono>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "camera.h"
+#include "energy_plot.h"
+#include "file_watcher.h"
+#include "frame_clock.h"
+#include "hot_reload.h"
+#include "interpolation.h"
+#include "rigidlab/lua/scene.h"
+#include "undo.h"
+
+namespace rigidlab::sandbox {
+
+struct DrawToggles {
+  bool grid = true, shapes = true, springs = true, forces = true;
+  bool contacts = false, normals = false, impulses = false, aabbs = false, centers = false, velocities = false;
+};
+
+// World settings changed in the panel. They stay in force across hot reloads (the scene's values
+// come back with "use the scene's values" or when another scene is opened).
+struct WorldOverrides {
+  std::optional<Vec2> gravity;
+  std::optional<Integrator> integrator;
+  std::optional<int> iterations;
+  std::optional<double> dt;
+  std::optional<bool> warm_starting;
+  bool any() const { return gravity || integrator || iterations || dt || warm_starting; }
+};
+
+enum class Tool { Select, Circle, Box, Polygon };
+
+// What the mouse is doing (tools.cpp).
+struct ToolState {
+  Tool tool = Tool::Select;
+  // Sizes and material of bodies made with a click (a drag sets the size instead).
+  double circle_radius = 0.5, box_width = 1.0, box_height = 1.0;  // [m]
+  double density = 1.0;                                           // [kg/m²]
+  double restitution = 0.2, friction = 0.6;
+  bool make_static = false;
+
+  enum class Gesture { None, Drag, Move, Rotate, Create, Pan };
+  Gesture gesture = Gesture::None;
+  Vec2 mouse_px = Vec2::Zero();  // last cursor position
+  Vec2 press_px = Vec2::Zero();  // where the button went down
+  Vec2 press_world = Vec2::Zero();
+  ForceId drag_force;            // Drag: the mouse force (running)
+  BodyId body;                   // Move/Rotate/Drag: the body
+  BodyProps before;              // Move/Rotate: for undo
+  Vec2 grab_offset = Vec2::Zero();  // Move: body origin − cursor
+  double start_angle = 0.0, start_cursor_angle = 0.0;  // Rotate
+  std::vector<Vec2> polygon;     // Polygon: the points clicked so far [m]
+};
+
+struct SaveDialog {
+  bool open = false;
+  std::string path;
+  std::string message;        // why the last attempt was refused
+  bool confirm_overwrite = false;
+};
+
+struct Session {
+  using Clock = std::chrono::steady_clock;
+
+  // --- model
+  std::unique_ptr<lua::Scene> scene;  // never null after startSession
+  std::filesystem::path file;         // the scene file (as given); empty: none
+  bool scene_loaded = false;          // false while showing the empty placeholder after a failed start
+  lua::SceneOptions scene_options;
+
+  // --- view
+  Camera camera;
+  DrawToggles draw;
+  bool show_panels = true, show_help = false, show_browser = false;
+
+  // --- controller
+  LoopSettings loop;
+  FrameClock clock;
+  RealTimeMeter meter;
+  bool paused = false;
+  bool behind = false;            // the last frame dropped simulated time
+  int steps_last_frame = 0;
+  double alpha = 1.0;
+  double last_frame_ms = 0.0, last_steps_ms = 0.0;  // wall time of the last frame / its steps
+  WorldOverrides overrides;
+  WorldOverrides scene_values;  // the scene's own values of the overridable settings (all set)
+  BodyId selected;
+  ToolState tools;
+  UndoHistory undo;
+  TransformHistory history;
+  EnergyHistory energy;
+  SaveDialog save;
+
+  // --- hot reload and errors
+  FileWatcher watcher;
+  SceneLoader loader;
+  std::string load_error;  // the last load failed: shown until the next good load
+  std::string run_error;   // a script failed while running: the simulation paused
+  std::string draw_error;  // OnDraw failed: it is not called again until the scene is reloaded
+  std::string status;      // a transient message (saved, undone, refused edit, ...)
+  Clock::time_point status_until{};
+  int reloads = 0;
+  double last_load_ms = 0.0;
+
+  void setStatus(std::string message, double seconds = 3.0);
+  World& world() { return scene->world(); }
+  const World& world() const { return scene->world(); }
+  double dt() const { return scene->settings().dt; }
+};
+
+// Loads `file` (empty: an empty world) on this thread and starts watching it. On failure the
+// session shows an empty world with the error overlay and watches the file, so fixing it loads it.
+void startSession(Session& s, const std::filesystem::path& file);
+// Puts a finished load in place (see LoadPurpose) or shows its error. Prints `reloaded <file>` to
+// standard output after a successful reload.
+void adoptScene(Session& s, LoadResult result);
+// Starts loading `file` beside the running scene (the browser, reset, F5, the file watcher).
+void requestLoad(Session& s, const std::filesystem::path& file, LoadPurpose purpose);
+// Per frame: file changes → loads, finished loads → adoptScene.
+void updateHotReload(Session& s, Session::Clock::time_point now = Session::Clock::now());
+
+// Runs the world steps of one frame that took `frame_seconds` (frame_clock.h). A script error
+// pauses the simulation and sets run_error; the world stays as before the failed step.
+void advance(Session& s, double frame_seconds);
+// One step now (the single-step key); pauses first.
+void stepOnce(Session& s);
+void setPaused(Session& s, bool paused);
+
+void applyOverrides(Session& s);
+void clearOverrides(Session& s);  // and restore the scene's own values (by reloading)
+void fitCamera(Session& s);       // the whole scene in view
+// Bounds of all bodies; nothing for an empty world.
+std::optional<Aabb> worldBounds(const World& world);
+
+// --- edits (all undoable)
+BodyId addBody(Session& s, const BodyDef& def, const std::string& label);  // BodyId{} if refused (status says why)
+void deleteBody(Session& s, BodyId id);
+void toggleStatic(Session& s, BodyId id);
+void undo(Session& s);
+void redo(Session& s);
+// Ends whatever the mouse was doing (drag force removed, move committed) — before a swap, a pause.
+void cancelGesture(Session& s);
+
+// Saves the world as a scene file (scene_writer.h). Refuses the open scene and its modules (they
+// would be overwritten by data and reloaded). Returns false with the reason in `message`.
+bool saveWorld(Session& s, const std::filesystem::path& path, std::string& message);
+// A file name next to the scene that does not exist yet: "<stem>_saved.lua", "<stem>_saved_2.lua", ...
+std::filesystem::path suggestSavePath(const Session& s);
+
+// Scene files offered by the browser: scripts/scenes/*.lua, sorted.
+std::vector<std::filesystem::path> browsableScenes();
+
+}  // namespace rigidlab::sandbox
