@@ -29,6 +29,10 @@ void findPairs(WorldImpl& w) {
     const Body& b = w.bodies[i];
     p.is_static = b.isStatic();
     p.aabb = computeAabb(b.shape, b.xf);
+    // Inflated by half the contact margin each, so pairs within the margin are found.
+    const Vec2 half_margin = Vec2::Constant(0.5 * w.def.contact_margin);
+    p.aabb.lower -= half_margin;
+    p.aabb.upper += half_margin;
   }
   w.broad_phase->findPairs(w.proxies, w.pairs);
 }

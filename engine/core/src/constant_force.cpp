@@ -1,6 +1,4 @@
 // A constant force through the centre of mass or at a point fixed on the body.
-#include <algorithm>
-
 #include "rigidlab/debug_draw.h"
 #include "rigidlab/error.h"
 #include "rigidlab/forces.h"
@@ -17,12 +15,7 @@ void ConstantForce::evaluate(const ForceInput& in, ForceOutput& out) {
 }
 
 void ConstantForce::draw(DebugDraw& dd, const BodyState& a, const BodyState*) const {
-  // Arrow length: the force in units of the body's weight (1 m per m·g), kept readable.
-  const double weight = std::max(a.mass * 9.80665, 1e-12);
-  const double length = std::clamp(force_.norm() / weight, 0.2, 3.0);
-  if (force_.norm() == 0.0) return;
-  const Vec2 from = local_point_ ? a.worldPoint(*local_point_) : a.center;
-  dd.drawArrow(from, from + force_.normalized() * length, {1.0f, 0.4f, 0.3f, 1.0f});
+  drawForceArrow(dd, local_point_ ? a.worldPoint(*local_point_) : a.center, force_, a.mass);
 }
 
 }  // namespace rigidlab

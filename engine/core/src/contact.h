@@ -17,6 +17,8 @@ struct ContactPoint {
   double normal_mass = 0.0;       // 1 / (1/m_A + 1/m_B + (r_A×n)²/I_A + (r_B×n)²/I_B)   (origin.md §8)
   double tangent_mass = 0.0;      // same with the tangent t                         (origin.md §10)
   double target_velocity = 0.0;   // normal relative velocity the solver aims for (restitution) [m/s]
+  double overlap_time = 0.0;      // how long the point has overlapped this step [s] (position_correction.cpp)
+  bool persisted = false;         // the same features touched in the previous step
   double friction = 0.0;          // f_s or f_d, chosen from the slip at the start of the step
   double normal_impulse = 0.0;    // accumulated, ≥ 0 [N·s]
   double tangent_impulse = 0.0;   // accumulated, |·| ≤ friction · normal_impulse [N·s]

@@ -5,7 +5,8 @@
 //   relative velocity     v_r = (v_B + ω_B × r_B) − (v_A + ω_A × r_A)
 //   effective mass        m_n = 1 / (1/m_A + 1/m_B + (r_A × n)²/I_A + (r_B × n)²/I_B)
 //   restitution target    v_target = −e (v_r·n) if v_r·n < −threshold, else 0; computed once before
-//                         the iterations so restitution is not re-applied each pass (origin.md §9)
+//                         the iterations so restitution is not re-applied each pass (origin.md §9),
+//                         and taken at the moment the overlap began (prepare() below)
 //   normal impulse        λ = −m_n (v_r·n − v_target); accumulated P_n = max(P_n + λ, 0)
 //   friction impulse      λ_t = −m_t (v_r·t); accumulated P_t clamped to ±f P_n, using the
 //                         accumulated normal impulse, not the last increment (origin.md §10, Catto)
@@ -34,7 +35,20 @@ Vec2 relativeVelocity(const Body& a, const Body& b, const ContactPoint& cp) {
   return b.velocity + cross(b.angular_velocity, cp.rb) - a.velocity - cross(a.angular_velocity, cp.ra);
 }
 
+// κ: the weight an integrator's position update gives to the velocity gained during the step:
+// 1 for semi-implicit Euler (c += h v_{n+1}), ½ for RK4 (c += h v_n + ½ h² a, exact for a constant
+// force), 0 for explicit Euler (c += h v_n).
+double restingWeight(Integrator integrator) {
+  switch (integrator) {
+    case Integrator::ExplicitEuler: return 0.0;
+    case Integrator::SemiImplicitEuler: return 1.0;
+    case Integrator::RungeKutta4: return 0.5;
+  }
+  return 0.0;
+}
+
 void prepare(WorldImpl& w, Contact& c) {
+  const double resting_weight = restingWeight(w.def.integrator);
   const Body& a = w.bodies[c.a];
   const Body& b = w.bodies[c.b];
   const Vec2 n = c.normal;
@@ -51,14 +65,39 @@ void prepare(WorldImpl& w, Contact& c) {
     cp.tangent_mass = kt > 0.0 ? 1.0 / kt : 0.0;
 
     const double vn = relativeVelocity(a, b, cp).dot(n);
-    cp.target_velocity = vn < -w.def.restitution_threshold ? -c.restitution * vn : 0.0;
-
-    const Vec2 slip_start = w.start_velocity[c.b] + cross(w.start_angular_velocity[c.b], cp.rb) -
-                            w.start_velocity[c.a] - cross(w.start_angular_velocity[c.a], cp.ra);
-    cp.friction = std::abs(slip_start.dot(t)) < w.def.static_friction_speed ? c.static_friction : c.friction;
+    // How long the point has been overlapping within this step: a new contact since depth / speed
+    // before the end; a persisting one all step long, under a force spread over the step, whose
+    // position effect is the integrator's weight κ of the velocity gained (position_correction.cpp).
+    if (cp.persisted) {
+      cp.overlap_time = resting_weight * w.dt;
+    } else {
+      cp.overlap_time = (vn < 0.0 && cp.separation < 0.0) ? std::min(w.dt, cp.separation / vn) : 0.0;
+    }
+    // Relative velocity of the point at the start of the step.
+    const Vec2 v_start = w.start_velocity[c.b] + cross(w.start_angular_velocity[c.b], cp.rb) - w.start_velocity[c.a] -
+                         cross(w.start_angular_velocity[c.a], cp.ra);
+    cp.friction = std::abs(v_start.dot(t)) < w.def.static_friction_speed ? c.static_friction : c.friction;
     if (!w.def.warm_starting) {
       cp.normal_impulse = 0.0;
       cp.tangent_impulse = 0.0;
+    }
+    cp.target_velocity = 0.0;
+    if (cp.separation > 0.0) {
+      // Speculative point: the bodies may close the gap during the next step, not more.
+      cp.target_velocity = -cp.separation / w.dt;
+      if (vn < -w.def.restitution_threshold && c.restitution > 0.0 && vn * w.dt < -cp.separation) {
+        // A bouncing impact: let it happen next step, where restitution is taken at the moment of
+        // contact, instead of stopping the body at the surface here.
+        cp.normal_mass = cp.tangent_mass = 0.0;
+        cp.normal_impulse = cp.tangent_impulse = 0.0;
+      }
+    } else if (vn < -w.def.restitution_threshold) {
+      // Restitution at the moment the overlap began, τ before the end of the step: the approach
+      // speed then was v_n − a τ, with a the normal acceleration over the step (from the velocity
+      // at its start); after the bounce the same acceleration acts for τ:
+      //   v_target = −e (v_n − a τ) + a τ = −e v_n + (1 + e) a τ        (accuracy.md §3.12)
+      const double accel = (vn - v_start.dot(n)) / w.dt;
+      cp.target_velocity = std::max(0.0, -c.restitution * vn + (1.0 + c.restitution) * accel * cp.overlap_time);
     }
   }
 }
@@ -107,12 +146,10 @@ void solveContacts(WorldImpl& w) {
   const size_t n = w.bodies.size();
   w.solve_start_velocity.resize(n);
   w.solve_start_angular_velocity.resize(n);
-  w.in_contact.assign(n, 0);
   for (size_t i = 0; i < n; ++i) {
     w.solve_start_velocity[i] = w.bodies[i].velocity;
     w.solve_start_angular_velocity[i] = w.bodies[i].angular_velocity;
   }
-  for (const Contact& c : w.contacts) w.in_contact[c.a] = w.in_contact[c.b] = 1;
   for (Contact& c : w.contacts) prepare(w, c);
   if (w.def.warm_starting)
     for (Contact& c : w.contacts) warmStart(w, c);

@@ -40,6 +40,14 @@ void DebugDraw::drawArrow(const Vec2& from, const Vec2& to, const Color& color) 
   drawSegment(to, to - head * u - 0.5 * head * perp(u), color);
 }
 
+void drawForceArrow(DebugDraw& dd, const Vec2& from, const Vec2& force, double mass) {
+  const double magnitude = force.norm();
+  if (magnitude == 0.0) return;
+  const double weight = std::max(mass * 9.80665, 1e-12);
+  const double length = std::clamp(magnitude / weight, 0.2, 3.0);
+  dd.drawArrow(from, from + force / magnitude * length, {1.0f, 0.4f, 0.3f, 1.0f});
+}
+
 void World::draw(DebugDraw& dd, const DrawOptions& opt) const {
   const WorldImpl& w = *impl_;
   const Color static_fill{0.35f, 0.38f, 0.42f, 1.0f}, static_line{0.6f, 0.65f, 0.7f, 1.0f};

@@ -22,7 +22,7 @@ void narrowPhase(WorldImpl& w) {
   for (const BodyPair& pair : w.pairs) {
     const Body& a = w.bodies[pair.a];
     const Body& b = w.bodies[pair.b];
-    const Manifold m = collideShapes(a.shape, a.xf, b.shape, b.xf, 0.0);
+    const Manifold m = collideShapes(a.shape, a.xf, b.shape, b.xf, w.def.contact_margin);
     if (m.count == 0) continue;
     Contact c;
     c.a = pair.a;
@@ -42,8 +42,13 @@ void narrowPhase(WorldImpl& w) {
       for (int i = 0; i < c.count; ++i)
         for (int j = 0; j < prev[old].count; ++j)
           if (prev[old].points[j].id == c.points[i].id) {
-            c.points[i].normal_impulse = prev[old].points[j].normal_impulse;
-            c.points[i].tangent_impulse = prev[old].points[j].tangent_impulse;
+            c.points[i].persisted = true;
+            // An impact's impulse says nothing about the next step's contact force: only a
+            // point that was not bouncing starts from its last impulse.
+            if (prev[old].points[j].target_velocity <= 0.0) {
+              c.points[i].normal_impulse = prev[old].points[j].normal_impulse;
+              c.points[i].tangent_impulse = prev[old].points[j].tangent_impulse;
+            }
           }
     }
     w.contacts.push_back(c);

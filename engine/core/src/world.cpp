@@ -110,6 +110,7 @@ World::World(const WorldDef& def) : impl_(std::make_unique<WorldImpl>()) {
   setPositionCorrection(def.position_correction);
   setRestitutionThreshold(def.restitution_threshold);
   setStaticFrictionSpeed(def.static_friction_speed);
+  setContactMargin(def.contact_margin);
 }
 
 World::~World() = default;
@@ -132,6 +133,9 @@ void World::setContactDisplacement(bool on) { impl_->def.contact_displacement = 
 void World::setPositionCorrection(PositionCorrection pc) { impl_->def.position_correction = pc; }
 void World::setRestitutionThreshold(double speed) {
   impl_->def.restitution_threshold = requireNonNegative("restitution_threshold", speed);
+}
+void World::setContactMargin(double distance) {
+  impl_->def.contact_margin = requireNonNegative("contact_margin", distance);
 }
 void World::setStaticFrictionSpeed(double speed) {
   impl_->def.static_friction_speed = requireNonNegative("static_friction_speed", speed);
@@ -219,6 +223,7 @@ BodyState WorldImpl::stateOf(const Body& b) {
   s.inertia = b.inertia;
   s.is_static = b.isStatic();
   s.id = b.id;
+  s.uid = b.uid;
   return s;
 }
 

@@ -67,7 +67,8 @@ struct WorldImpl {
 
   std::vector<Vec2> solve_start_velocity;  // per slot: velocity before the contact solve
   std::vector<double> solve_start_angular_velocity;
-  std::vector<char> in_contact;           // per slot: touches something this step
+  std::vector<double> overlap_time;       // per slot: Σ P τ over its contact points (position_correction)
+  std::vector<double> overlap_weight;     // per slot: Σ P
   std::vector<Vec2> correction_start;     // per slot: centre before position correction
   std::vector<double> correction_start_angle;
 

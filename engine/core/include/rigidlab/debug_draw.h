@@ -27,4 +27,8 @@ class DebugDraw {
   virtual void drawArrow(const Vec2& from, const Vec2& to, const Color& color);
 };
 
+// A force drawn as an arrow from its application point, 1 m long per the body's weight (m·g0),
+// clamped to 0.2–3 m so small and large forces stay readable. Nothing for a zero force.
+void drawForceArrow(DebugDraw& dd, const Vec2& from, const Vec2& force, double mass);
+
 }  // namespace rigidlab

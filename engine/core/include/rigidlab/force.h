@@ -30,6 +30,7 @@ struct BodyState {
   double inertia = 0.0;           // [kg·m²] about the centre of mass
   bool is_static = false;
   BodyId id;
+  uint32_t uid = 0;  // Body::uid
 
   // World position of a point given in body coordinates.
   Vec2 worldPoint(const Vec2& local) const { return position + q.apply(local); }

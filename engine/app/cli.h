@@ -1,0 +1,43 @@
+// Command-line parsing shared by the subcommands: --name value, --name=value, flags, positionals.
+// Usage errors throw UsageError; main() prints them with a pointer to --help and exits with 2.
+#pragma once
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace rigidlab::app {
+
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class Args {
+ public:
+  // `valued`: options that take a value; `flags`: options that do not.
+  Args(std::string command, const std::vector<std::string>& argv, std::vector<std::string> valued,
+       std::vector<std::string> flags);
+
+  bool flag(const std::string& name) const;
+  std::optional<std::string> value(const std::string& name) const;
+  std::optional<double> number(const std::string& name) const;          // finite
+  std::optional<long> integer(const std::string& name, long min) const;  // ≥ min
+  const std::vector<std::string>& positional() const { return positional_; }
+  bool help() const { return help_; }
+
+ private:
+  std::string command_;
+  std::vector<std::pair<std::string, std::string>> values_;
+  std::vector<std::string> flags_set_;
+  std::vector<std::string> positional_;
+  bool help_ = false;
+};
+
+// Exit codes of every subcommand.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitSceneError = 1;  // scene error, failed Check, failed gate
+inline constexpr int kExitUsage = 2;
+
+}  // namespace rigidlab::app

@@ -1,0 +1,85 @@
+// Reading and validating what scripts pass to the API (the Lua boundary: validation lives here).
+//
+// Messages follow LÖVE's lead: they name the function, the field and the bad value, and carry the
+// location of the Lua line that made the call, e.g.
+//   scenes/box.lua:12: add_circle: radius must be > 0, got -1
+//   scenes/box.lua:14: add_box: unknown option 'widht' (did you mean 'width'?)
+// Tables are read with raw access, so a script's metamethods never run inside the host.
+#pragma once
+
+#include <initializer_list>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "rigidlab/math.h"
+#include "script_host.h"
+
+namespace rigidlab::lua {
+
+// The exception bound functions throw; sol2's trampoline turns it into a Lua error carrying the
+// message (no C++ object is alive when the Lua error is raised).
+class ScriptError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// "<file>:<line>: " of the Lua code `level` frames up (1: the caller of the running C function).
+std::string where(lua_State* L, int level = 1);
+// Throws ScriptError("<where><function>: <message>").
+[[noreturn]] void fail(lua_State* L, std::string_view function, const std::string& message);
+
+// True for nil and for an argument that was not passed at all (LUA_TNONE).
+inline bool isMissing(const sol::object& v) {
+  return v.get_type() == sol::type::lua_nil || v.get_type() == sol::type::none;
+}
+inline bool isMissing(const sol::stack_object& v) {
+  return v.get_type() == sol::type::lua_nil || v.get_type() == sol::type::none;
+}
+
+// A value as messages show it: -1, 0.5, nan, true, nil, "text", a table, a function, a body.
+std::string describe(const sol::object& value);
+std::string describe(lua_State* L, int index);
+
+// The closest name to `name` among `candidates` (edit distance ≤ 2 or a prefix), or "".
+std::string closestName(std::string_view name, const std::vector<std::string_view>& candidates);
+
+// A vector from a vec2 table, {x = , y = } or {x, y}; nullopt if the value is none of these.
+std::optional<Vec2> toVec(lua_State* L, const sol::object& value);
+// Pushes a new vec2 table.
+void pushVec(lua_State* L, const Vec2& v);
+sol::object makeVec(lua_State* L, const Vec2& v);
+
+// A table of named options, checked against the names a function accepts.
+class Options {
+ public:
+  // Fails unless `arg` is a table whose keys are all in `known` (unknown: "unknown option 'x'").
+  Options(lua_State* L, std::string_view function, const sol::object& arg, std::vector<std::string_view> known);
+
+  bool has(std::string_view key) const;
+  sol::object get(std::string_view key) const;
+
+  double number(std::string_view key, std::optional<double> fallback = std::nullopt) const;  // finite
+  double positive(std::string_view key, std::optional<double> fallback = std::nullopt) const;  // > 0
+  double nonNegative(std::string_view key, std::optional<double> fallback = std::nullopt) const;  // ≥ 0
+  double inRange(std::string_view key, double lo, double hi, std::optional<double> fallback = std::nullopt) const;
+  int integer(std::string_view key, int lo, int hi, std::optional<int> fallback = std::nullopt) const;
+  Vec2 vec(std::string_view key, std::optional<Vec2> fallback = std::nullopt) const;  // finite
+  bool boolean(std::string_view key, bool fallback) const;
+  std::string string(std::string_view key, std::optional<std::string> fallback = std::nullopt) const;
+
+  // Fails with "<function>: <key> <message>".
+  [[noreturn]] void fail(std::string_view key, const std::string& message) const;
+  const std::string& function() const { return function_; }
+  lua_State* L() const { return L_; }
+
+ private:
+  sol::object required(std::string_view key) const;
+
+  lua_State* L_;
+  std::string function_;
+  sol::table table_;
+};
+
+}  // namespace rigidlab::lua

@@ -1,0 +1,220 @@
+// Body handles in Lua: fields (read, and write where it makes sense) and methods.
+//
+//   read/write  position (body origin), angle, velocity, angular_velocity, mass, static, name,
+//               restitution, friction, static_friction
+//   read only   id, center (world centre of mass), inertia, density, shape ("circle"|"polygon"),
+//               radius (circles), vertices (polygons, body coordinates), removed
+//   methods     body:apply_impulse(j [, point])          point: world, default the centre of mass
+//               body:apply_force(f [, point [, duration]])  duration default: the next step only
+// A misspelt field is an error naming the closest valid one.
+#include <algorithm>
+
+#include "bindings.h"
+#include "lua_args.h"
+#include "rigidlab/error.h"
+
+namespace rigidlab::lua {
+namespace {
+
+const std::vector<std::string_view> kReadable = {
+    "position", "angle", "velocity", "angular_velocity", "mass", "static", "name", "restitution",
+    "friction", "static_friction", "id", "center", "inertia", "density", "shape", "radius", "vertices",
+    "removed", "apply_impulse", "apply_force"};
+const std::vector<std::string_view> kWritable = {"position", "angle", "velocity", "angular_velocity", "mass", "static",
+                                                 "name", "restitution", "friction", "static_friction"};
+
+World& worldOf(const LuaBody& b) { return *b.scene->world; }
+
+const LuaBody& selfBody(lua_State* L, const sol::stack_object& self, std::string_view function) {
+  if (!self.is<LuaBody>())
+    fail(L, function, "call it as body:" + std::string(function) + "(...), with a colon; got " + describe(self) +
+                          " as the body");
+  return self.as<const LuaBody&>();
+}
+
+double numberArg(lua_State* L, std::string_view function, std::string_view what, const sol::stack_object& v) {
+  if (v.get_type() != sol::type::number) fail(L, function, std::string(what) + " must be a number, got " + describe(v));
+  const double x = v.as<double>();
+  if (!std::isfinite(x)) fail(L, function, std::string(what) + " must be finite, got " + formatNumber(x));
+  return x;
+}
+
+Vec2 vecArg(lua_State* L, std::string_view function, std::string_view what, const sol::object& v) {
+  const auto p = toVec(L, v);
+  if (!p) fail(L, function, std::string(what) + " must be a vector {x, y} or vec2(x, y), got " + describe(v));
+  if (!isFinite(*p)) fail(L, function, std::string(what) + " must be finite, got " + formatVec(*p));
+  return *p;
+}
+
+int applyImpulse(lua_State* L) {
+  sol::stack_object self(L, 1), j(L, 2), p(L, 3);
+  const LuaBody& b = selfBody(L, self, "apply_impulse");
+  const BodyId id = liveBody(L, b, "apply_impulse");
+  const Vec2 impulse = vecArg(L, "apply_impulse", "impulse", j);
+  const Vec2 point = isMissing(p) ? worldOf(b).body(id).center : vecArg(L, "apply_impulse", "point", p);
+  try {
+    worldOf(b).applyImpulse(id, impulse, point);
+  } catch (const InputError& e) {
+    fail(L, "apply_impulse", e.what());
+  }
+  return 0;
+}
+
+int applyForce(lua_State* L) {
+  sol::stack_object self(L, 1), f(L, 2), p(L, 3), d(L, 4);
+  const LuaBody& b = selfBody(L, self, "apply_force");
+  const BodyId id = liveBody(L, b, "apply_force");
+  World& w = worldOf(b);
+  const Vec2 force = vecArg(L, "apply_force", "force", f);
+  std::optional<Vec2> local;  // a world point is attached to the body where it is now
+  if (!isMissing(p)) local = w.body(id).xf.applyInverse(vecArg(L, "apply_force", "point", p));
+  double duration = World::kNextStep;
+  if (!isMissing(d)) {
+    duration = numberArg(L, "apply_force", "duration", d);
+    if (!(duration > 0)) fail(L, "apply_force", "duration must be > 0, got " + formatNumber(duration));
+  }
+  try {
+    w.addForce(std::make_unique<ConstantForce>(force, local), id, {}, duration);
+  } catch (const InputError& e) {
+    fail(L, "apply_force", e.what());
+  }
+  return 0;
+}
+
+sol::object bodyIndex(sol::this_state ts, const LuaBody& self, sol::stack_object key) {
+  lua_State* L = ts;
+  if (key.get_type() != sol::type::string) fail(L, "body", "fields are named by strings, got " + describe(key));
+  const std::string k = key.as<std::string>();
+  if (k == "removed") return sol::make_object(L, !worldOf(self).isValid(self.id));
+  if (k == "id") return sol::make_object(L, self.uid);
+  if (k == "apply_impulse") return sol::make_object(L, guarded<applyImpulse>);
+  if (k == "apply_force") return sol::make_object(L, guarded<applyForce>);
+  if (std::find(kReadable.begin(), kReadable.end(), k) == kReadable.end()) {
+    const std::string hint = closestName(k, kReadable);
+    fail(L, "body", "has no field '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
+  }
+  const BodyId id = liveBody(L, self, "body." + k);
+  const Body& b = worldOf(self).body(id);
+  if (k == "position") return makeVec(L, b.position());
+  if (k == "angle") return sol::make_object(L, b.angle);
+  if (k == "velocity") return makeVec(L, b.velocity);
+  if (k == "angular_velocity") return sol::make_object(L, b.angular_velocity);
+  if (k == "mass") return sol::make_object(L, b.mass);
+  if (k == "inertia") return sol::make_object(L, b.inertia);
+  if (k == "density") return sol::make_object(L, b.density);
+  if (k == "center") return makeVec(L, b.center);
+  if (k == "static") return sol::make_object(L, b.isStatic());
+  if (k == "name") return sol::make_object(L, b.name);
+  if (k == "restitution") return sol::make_object(L, b.material.restitution);
+  if (k == "friction") return sol::make_object(L, b.material.friction);
+  if (k == "static_friction") return sol::make_object(L, b.material.static_friction);
+  if (k == "shape") return sol::make_object(L, b.shape.type == ShapeType::Circle ? "circle" : "polygon");
+  if (k == "radius") return b.shape.type == ShapeType::Circle ? sol::make_object(L, b.shape.radius) : sol::make_object(L, sol::lua_nil);
+  // vertices
+  if (b.shape.type != ShapeType::Polygon) return sol::make_object(L, sol::lua_nil);
+  lua_createtable(L, static_cast<int>(b.shape.vertices.size()), 0);
+  for (size_t i = 0; i < b.shape.vertices.size(); ++i) {
+    pushVec(L, b.shape.vertices[i]);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  return sol::stack::pop<sol::object>(L);
+}
+
+void bodyNewIndex(sol::this_state ts, const LuaBody& self, sol::stack_object key, sol::stack_object value) {
+  lua_State* L = ts;
+  if (key.get_type() != sol::type::string) fail(L, "body", "fields are named by strings, got " + describe(key));
+  const std::string k = key.as<std::string>();
+  const std::string function = "body." + k;
+  if (std::find(kWritable.begin(), kWritable.end(), k) == kWritable.end()) {
+    if (std::find(kReadable.begin(), kReadable.end(), k) != kReadable.end()) fail(L, function, "is read-only");
+    const std::string hint = closestName(k, kWritable);
+    fail(L, "body", "has no field '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
+  }
+  const BodyId id = liveBody(L, self, function);
+  World& w = worldOf(self);
+  const Body& b = w.body(id);
+  try {
+    if (k == "position") {
+      w.setTransform(id, vecArg(L, function, "value", value), b.angle);
+    } else if (k == "angle") {
+      w.setTransform(id, b.position(), numberArg(L, function, "value", value));
+    } else if (k == "velocity") {
+      w.setVelocity(id, vecArg(L, function, "value", value));
+    } else if (k == "angular_velocity") {
+      w.setAngularVelocity(id, numberArg(L, function, "value", value));
+    } else if (k == "mass") {
+      const double m = numberArg(L, function, "value", value);
+      if (!(m > 0)) fail(L, function, "must be > 0, got " + formatNumber(m));
+      w.setMass(id, m);
+    } else if (k == "static") {
+      if (value.get_type() != sol::type::boolean) fail(L, function, "must be true or false, got " + describe(value));
+      w.setType(id, value.as<bool>() ? BodyType::Static : BodyType::Dynamic);
+    } else if (k == "name") {
+      if (value.get_type() != sol::type::string) fail(L, function, "must be a string, got " + describe(value));
+      w.setName(id, value.as<std::string>());
+    } else {
+      Material m = b.material;
+      const double x = numberArg(L, function, "value", value);
+      if (k == "restitution") m.restitution = x;
+      if (k == "friction") m.friction = x;
+      if (k == "static_friction") m.static_friction = x;
+      w.setMaterial(id, m);
+    }
+  } catch (const InputError& e) {
+    // The core names its own field ("restitution must be between 0 and 1, got 2"); say which body field.
+    fail(L, function, e.what());
+  }
+}
+
+std::string bodyToString(const LuaBody& self) {
+  const World& w = *self.scene->world;
+  if (!w.isValid(self.id)) return "body (removed, id " + std::to_string(self.uid) + ")";
+  const Body& b = w.body(self.id);
+  return "body " + (b.name.empty() ? "" : "'" + b.name + "' ") + "(id " + std::to_string(self.uid) + ")";
+}
+
+}  // namespace
+
+void registerBodyType(sol::state& lua) {
+  lua.new_usertype<LuaBody>("rigidlab.body", sol::no_constructor,
+      sol::meta_function::index, &bodyIndex,
+      sol::meta_function::new_index, &bodyNewIndex,
+      sol::meta_function::to_string, &bodyToString,
+      sol::meta_function::equal_to, [](const LuaBody& a, const LuaBody& b) { return a.scene == b.scene && a.uid == b.uid; });
+  lua["rigidlab.body"] = sol::lua_nil;  // no global; the type lives in the registry
+}
+
+sol::object bodyHandle(lua_State* L, Scene::Impl& scene, BodyId id) {
+  const uint32_t uid = scene.world->body(id).uid;
+  sol::object cached = scene.handles.raw_get<sol::object>(uid);
+  if (cached.valid() && cached.get_type() != sol::type::lua_nil) return cached;
+  sol::object handle = sol::make_object(L, LuaBody{&scene, id, uid});
+  scene.handles.raw_set(uid, handle);
+  return handle;
+}
+
+BodyId liveBody(lua_State* L, const LuaBody& body, std::string_view function) {
+  if (!body.scene->world->isValid(body.id))
+    fail(L, function, "body (id " + std::to_string(body.uid) + ") was removed from the world");
+  return body.id;
+}
+
+BodyId bodyOption(lua_State* L, Scene::Impl& scene, std::string_view function, std::string_view key,
+                  const sol::object& value) {
+  if (!value.is<LuaBody>())
+    fail(L, function, std::string(key) + " must be a body (from world:add_box, add_circle, ...), got " + describe(value));
+  const LuaBody& b = value.as<const LuaBody&>();
+  if (b.scene != &scene) fail(L, function, std::string(key) + " is a body of another scene");
+  return liveBody(L, b, function);
+}
+
+std::string describeHandle(lua_State* L, int index) {
+  sol::stack_object v(L, index);
+  if (v.is<LuaBody>()) return bodyToString(v.as<const LuaBody&>());
+  if (v.is<LuaForceHandle>()) return "a " + v.as<const LuaForceHandle&>().kind;
+  if (v.is<LuaWorld>()) return "the world";
+  if (v.is<LuaDraw>()) return "the draw object";
+  return "a userdata";
+}
+
+}  // namespace rigidlab::lua

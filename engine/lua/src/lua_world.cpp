@@ -1,0 +1,392 @@
+// The `world` object scenes receive in PopulateWorld, OnStep, Check and OnKey.
+//
+//   fields   gravity (vec2), integrator (string), dt, iterations: read and write
+//            time, step_count, title: read only
+//   methods  add_box, add_circle, add_polygon, add_spring, add_damper, add_force, bodies, find,
+//            remove, step, kinetic_energy, potential_energy
+// Forces, springs and dampers are returned as handles with `kind`, `removed` and `remove()`.
+#include <algorithm>
+
+#include "bindings.h"
+#include "lua_args.h"
+#include "lua_force.h"
+#include "rigidlab/error.h"
+
+namespace rigidlab::lua {
+namespace {
+
+const std::vector<std::string_view> kBodyOptions = {"position", "angle", "velocity", "angular_velocity", "density",
+                                                    "mass", "restitution", "friction", "static_friction", "static",
+                                                    "name"};
+const std::vector<std::string_view> kFields = {"gravity", "integrator", "dt", "iterations", "time", "step_count",
+                                               "title"};
+const std::vector<std::string_view> kMethods = {"add_box", "add_circle", "add_polygon", "add_spring",
+                                                "add_damper", "add_force", "bodies", "find", "remove", "step",
+                                                "kinetic_energy", "potential_energy"};
+
+Scene::Impl& selfWorld(lua_State* L, const sol::stack_object& self, std::string_view function) {
+  if (!self.is<LuaWorld>())
+    fail(L, function, "call it as world:" + std::string(function) + "(...), with a colon; got " + describe(self) +
+                          " as the world");
+  return *self.as<const LuaWorld&>().scene;
+}
+
+std::vector<std::string_view> with(std::vector<std::string_view> base, std::initializer_list<std::string_view> more) {
+  base.insert(base.end(), more);
+  return base;
+}
+
+// Creates the body from the common options and a shape; core errors become Lua errors.
+sol::object createBody(lua_State* L, Scene::Impl& scene, const Options& o, const Shape& shape) {
+  BodyDef d;
+  d.shape = shape;
+  d.type = o.boolean("static", false) ? BodyType::Static : BodyType::Dynamic;
+  d.position = o.vec("position", Vec2::Zero());
+  d.angle = o.number("angle", 0.0);
+  d.velocity = o.vec("velocity", Vec2::Zero());
+  d.angular_velocity = o.number("angular_velocity", 0.0);
+  if (o.has("mass") && o.has("density")) o.fail("mass", "and density cannot both be given (mass sets the density)");
+  if (o.has("mass")) {
+    d.mass = o.positive("mass");
+  } else {
+    d.density = o.positive("density", 1.0);
+  }
+  d.restitution = o.inRange("restitution", 0.0, 1.0, 0.0);
+  d.friction = o.nonNegative("friction", 0.6);
+  if (o.has("static_friction")) d.static_friction = o.nonNegative("static_friction");
+  d.name = o.string("name", "");
+  BodyId id;
+  try {
+    id = scene.world->createBody(d);
+  } catch (const InputError& e) {
+    fail(L, o.function(), e.what());  // the core's message names the field and the value
+  }
+  return bodyHandle(L, scene, id);
+}
+
+int addBox(lua_State* L) {
+  Scene::Impl& scene = selfWorld(L, sol::stack_object(L, 1), "add_box");
+  const Options o(L, "add_box", sol::stack_object(L, 2), with(kBodyOptions, {"width", "height"}));
+  const Shape shape = makeBox(o.positive("width"), o.positive("height"));
+  createBody(L, scene, o, shape).push(L);
+  return 1;
+}
+
+int addCircle(lua_State* L) {
+  Scene::Impl& scene = selfWorld(L, sol::stack_object(L, 1), "add_circle");
+  const Options o(L, "add_circle", sol::stack_object(L, 2), with(kBodyOptions, {"radius"}));
+  const Shape shape = makeCircle(o.positive("radius"));
+  createBody(L, scene, o, shape).push(L);
+  return 1;
+}
+
+int addPolygon(lua_State* L) {
+  Scene::Impl& scene = selfWorld(L, sol::stack_object(L, 1), "add_polygon");
+  const Options o(L, "add_polygon", sol::stack_object(L, 2), with(kBodyOptions, {"vertices"}));
+  const sol::object list = o.get("vertices");
+  if (list.get_type() != sol::type::table)
+    o.fail("vertices", list.get_type() == sol::type::lua_nil ? "is required"
+                                                             : "must be a list of points {{x, y}, ...}, got " + describe(list));
+  const sol::table t = list.as<sol::table>();
+  const size_t n = t.size();
+  if (n > static_cast<size_t>(kMaxPolygonVertices))
+    o.fail("vertices", "has " + std::to_string(n) + " points, at most " + std::to_string(kMaxPolygonVertices) +
+                           " are allowed");
+  std::vector<Vec2> points;
+  for (size_t i = 1; i <= n; ++i) {
+    const sol::object p = t.raw_get<sol::object>(i);
+    const auto v = toVec(L, p);
+    const std::string field = "vertices[" + std::to_string(i) + "]";
+    if (!v) o.fail(field, "must be a point {x, y}, got " + describe(p));
+    if (!isFinite(*v)) o.fail(field, "must be finite, got " + formatVec(*v));
+    points.push_back(*v);
+  }
+  Shape shape;
+  try {
+    shape = makePolygon(points);
+  } catch (const InputError& e) {
+    fail(L, "add_polygon", e.what());
+  }
+  createBody(L, scene, o, shape).push(L);
+  return 1;
+}
+
+sol::object forceHandle(lua_State* L, Scene::Impl& scene, ForceId id, std::string kind) {
+  return sol::make_object(L, LuaForceHandle{&scene, id, std::move(kind)});
+}
+
+int addSpring(lua_State* L) {
+  Scene::Impl& scene = selfWorld(L, sol::stack_object(L, 1), "add_spring");
+  const Options o(L, "add_spring", sol::stack_object(L, 2),
+                  {"a", "b", "anchor", "local_a", "local_b", "stiffness", "rest_length", "damping"});
+  SpringDef d;
+  d.a = bodyOption(L, scene, "add_spring", "a", o.get("a"));
+  if (o.has("b") == o.has("anchor"))
+    o.fail(o.has("b") ? "b" : "anchor", o.has("b") ? "and anchor cannot both be given: a spring ends at a body (b) or at a fixed point (anchor)"
+                                                   : "is required (or b): a spring ends at a body (b) or at a fixed point (anchor)");
+  if (o.has("b")) {
+    d.b = bodyOption(L, scene, "add_spring", "b", o.get("b"));
+    if (d.b == d.a) o.fail("b", "must be a different body than a");
+  } else {
+    d.anchor = o.vec("anchor");
+  }
+  if (o.has("local_b") && !o.has("b")) o.fail("local_b", "needs b (a spring to an anchor has no second body)");
+  d.local_a = o.vec("local_a", Vec2::Zero());
+  d.local_b = o.vec("local_b", Vec2::Zero());
+  d.stiffness = o.nonNegative("stiffness");
+  if (o.has("rest_length")) d.rest_length = o.nonNegative("rest_length");
+  d.damping = o.nonNegative("damping", 0.0);
+  ForceId id;
+  try {
+    id = scene.world->addSpring(d);
+  } catch (const InputError& e) {
+    fail(L, "add_spring", e.what());
+  }
+  forceHandle(L, scene, id, "spring").push(L);
+  return 1;
+}
+
+int addDamper(lua_State* L) {
+  Scene::Impl& scene = selfWorld(L, sol::stack_object(L, 1), "add_damper");
+  const Options o(L, "add_damper", sol::stack_object(L, 2), {"body", "coefficient", "angular_coefficient"});
+  DamperDef d;
+  d.body = bodyOption(L, scene, "add_damper", "body", o.get("body"));
+  d.coefficient = o.nonNegative("coefficient");
+  d.angular_coefficient = o.nonNegative("angular_coefficient", 0.0);
+  ForceId id;
+  try {
+    id = scene.world->addDamper(d);
+  } catch (const InputError& e) {
+    fail(L, "add_damper", e.what());
+  }
+  forceHandle(L, scene, id, "damper").push(L);
+  return 1;
+}
+
+int addForce(lua_State* L) {
+  Scene::Impl& scene = selfWorld(L, sol::stack_object(L, 1), "add_force");
+  const Options o(L, "add_force", sol::stack_object(L, 2), {"body", "evaluate", "duration", "point", "other"});
+  const BodyId body = bodyOption(L, scene, "add_force", "body", o.get("body"));
+  const sol::object fn = o.get("evaluate");
+  if (fn.get_type() != sol::type::function)
+    o.fail("evaluate", fn.get_type() == sol::type::lua_nil ? "is required: a function(s) returning fx, fy [, torque]"
+                                                           : "must be a function(s) returning fx, fy [, torque], got " + describe(fn));
+  const double duration = o.has("duration") ? o.positive("duration") : World::kForever;
+  std::optional<Vec2> point;
+  if (o.has("point")) point = o.vec("point");
+  BodyId other;
+  if (o.has("other")) {
+    other = bodyOption(L, scene, "add_force", "other", o.get("other"));
+    if (other == body) o.fail("other", "must be a different body than body");
+  }
+  ForceId id;
+  try {
+    auto force = std::make_unique<LuaForce>(*scene.host, fn.as<sol::function>(), point, !other.isNull());
+    id = scene.world->addForce(std::move(force), body, other, duration);
+  } catch (const InputError& e) {
+    fail(L, "add_force", e.what());
+  }
+  forceHandle(L, scene, id, "lua force").push(L);
+  return 1;
+}
+
+int bodies(lua_State* L) {
+  Scene::Impl& scene = selfWorld(L, sol::stack_object(L, 1), "bodies");
+  const std::vector<BodyId> ids = scene.world->bodyIds();
+  lua_createtable(L, static_cast<int>(ids.size()), 0);
+  for (size_t i = 0; i < ids.size(); ++i) {
+    bodyHandle(L, scene, ids[i]).push(L);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  return 1;
+}
+
+int find(lua_State* L) {
+  Scene::Impl& scene = selfWorld(L, sol::stack_object(L, 1), "find");
+  sol::stack_object name(L, 2);
+  if (name.get_type() != sol::type::string) fail(L, "find", "name must be a string, got " + describe(name));
+  const auto id = scene.world->findBody(std::string_view(name.as<std::string>()));
+  if (!id) return 0;
+  bodyHandle(L, scene, *id).push(L);
+  return 1;
+}
+
+int remove(lua_State* L) {
+  Scene::Impl& scene = selfWorld(L, sol::stack_object(L, 1), "remove");
+  sol::stack_object what(L, 2);
+  try {
+    if (what.is<LuaBody>()) {
+      const LuaBody& b = what.as<const LuaBody&>();
+      if (b.scene != &scene) fail(L, "remove", "the body belongs to another scene");
+      scene.world->destroyBody(liveBody(L, b, "remove"));
+      scene.handles.raw_set(b.uid, sol::lua_nil);
+    } else if (what.is<LuaForceHandle>()) {
+      const LuaForceHandle& f = what.as<const LuaForceHandle&>();
+      if (!scene.world->isValid(f.id)) fail(L, "remove", "the " + f.kind + " was already removed (or has expired)");
+      scene.world->removeForce(f.id);
+    } else {
+      fail(L, "remove", "expects a body, force, spring or damper, got " + describe(what));
+    }
+  } catch (const InputError& e) {
+    fail(L, "remove", e.what());
+  }
+  return 0;
+}
+
+int step(lua_State* L) {
+  Scene::Impl& scene = selfWorld(L, sol::stack_object(L, 1), "step");
+  sol::stack_object dt(L, 2);
+  double h = scene.settings.dt;
+  if (!isMissing(dt)) {
+    if (dt.get_type() != sol::type::number) fail(L, "step", "dt must be a number, got " + describe(dt));
+    h = dt.as<double>();
+    if (!(h > 0) || !std::isfinite(h)) fail(L, "step", "dt must be > 0, got " + formatNumber(h));
+  }
+  try {
+    scene.world->step(h);
+  } catch (const InputError& e) {
+    fail(L, "step", e.what());
+  }
+  return 0;
+}
+
+int kineticEnergy(lua_State* L) {
+  lua_pushnumber(L, selfWorld(L, sol::stack_object(L, 1), "kinetic_energy").world->kineticEnergy());
+  return 1;
+}
+
+int potentialEnergy(lua_State* L) {
+  lua_pushnumber(L, selfWorld(L, sol::stack_object(L, 1), "potential_energy").world->potentialEnergy());
+  return 1;
+}
+
+sol::object method(lua_State* L, std::string_view name) {
+  lua_CFunction f = nullptr;
+  if (name == "add_box") f = guarded<addBox>;
+  else if (name == "add_circle") f = guarded<addCircle>;
+  else if (name == "add_polygon") f = guarded<addPolygon>;
+  else if (name == "add_spring") f = guarded<addSpring>;
+  else if (name == "add_damper") f = guarded<addDamper>;
+  else if (name == "add_force") f = guarded<addForce>;
+  else if (name == "bodies") f = guarded<bodies>;
+  else if (name == "find") f = guarded<find>;
+  else if (name == "remove") f = guarded<remove>;
+  else if (name == "step") f = guarded<step>;
+  else if (name == "kinetic_energy") f = guarded<kineticEnergy>;
+  else if (name == "potential_energy") f = guarded<potentialEnergy>;
+  if (!f) return sol::make_object(L, sol::lua_nil);
+  lua_pushcfunction(L, f);
+  return sol::stack::pop<sol::object>(L);
+}
+
+void unknownField(lua_State* L, const std::string& k) {
+  std::vector<std::string_view> all = kFields;
+  all.insert(all.end(), kMethods.begin(), kMethods.end());
+  const std::string hint = closestName(k, all);
+  fail(L, "world", "has no field '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
+}
+
+sol::object worldIndex(sol::this_state ts, const LuaWorld& self, sol::stack_object key) {
+  lua_State* L = ts;
+  if (key.get_type() != sol::type::string) fail(L, "world", "fields are named by strings, got " + describe(key));
+  const std::string k = key.as<std::string>();
+  const World& w = *self.scene->world;
+  if (k == "gravity") return makeVec(L, w.settings().gravity);
+  if (k == "integrator") return sol::make_object(L, std::string(integratorName(w.settings().integrator)));
+  if (k == "dt") return sol::make_object(L, self.scene->settings.dt);
+  if (k == "iterations") return sol::make_object(L, w.settings().iterations);
+  if (k == "time") return sol::make_object(L, w.time());
+  if (k == "step_count") return sol::make_object(L, w.stepCount());
+  if (k == "title") return sol::make_object(L, self.scene->settings.title);
+  sol::object m = method(L, k);
+  if (m.get_type() == sol::type::lua_nil) unknownField(L, k);
+  return m;
+}
+
+void worldNewIndex(sol::this_state ts, const LuaWorld& self, sol::stack_object key, sol::stack_object value) {
+  lua_State* L = ts;
+  if (key.get_type() != sol::type::string) fail(L, "world", "fields are named by strings, got " + describe(key));
+  const std::string k = key.as<std::string>();
+  const std::string function = "world." + k;
+  World& w = *self.scene->world;
+  const auto number = [&] {
+    if (value.get_type() != sol::type::number) fail(L, function, "must be a number, got " + describe(value));
+    return value.as<double>();
+  };
+  try {
+    if (k == "gravity") {
+      const auto g = toVec(L, value);
+      if (!g) fail(L, function, "must be a vector {x, y} or vec2(x, y), got " + describe(value));
+      w.setGravity(*g);
+    } else if (k == "integrator") {
+      const auto i = value.is<std::string>() ? parseIntegrator(value.as<std::string>()) : std::nullopt;
+      if (!i) fail(L, function, "must be one of " + integratorNames() + ", got " + describe(value));
+      w.setIntegrator(*i);
+    } else if (k == "dt") {
+      const double dt = number();
+      if (!(dt > 0) || !std::isfinite(dt)) fail(L, function, "must be > 0, got " + formatNumber(dt));
+      self.scene->settings.dt = dt;
+    } else if (k == "iterations") {
+      const double n = number();
+      if (n != std::floor(n) || n < 1 || n > 10000)
+        fail(L, function, "must be a whole number between 1 and 10000, got " + describe(value));
+      w.setIterations(static_cast<int>(n));
+    } else if (std::find(kFields.begin(), kFields.end(), k) != kFields.end() ||
+               std::find(kMethods.begin(), kMethods.end(), k) != kMethods.end()) {
+      fail(L, function, "is read-only");
+    } else {
+      unknownField(L, k);
+    }
+  } catch (const InputError& e) {
+    fail(L, function, e.what());
+  }
+}
+
+// --- force handles: kind, removed, remove()
+
+int removeForceHandle(lua_State* L) {
+  sol::stack_object self(L, 1);
+  if (!self.is<LuaForceHandle>()) fail(L, "remove", "call it as handle:remove(), with a colon");
+  const LuaForceHandle& f = self.as<const LuaForceHandle&>();
+  if (f.scene->world->isValid(f.id)) {
+    try {
+      f.scene->world->removeForce(f.id);
+    } catch (const InputError& e) {
+      fail(L, "remove", e.what());
+    }
+  }
+  return 0;
+}
+
+sol::object forceIndex(sol::this_state ts, const LuaForceHandle& self, sol::stack_object key) {
+  lua_State* L = ts;
+  const std::string k = key.is<std::string>() ? key.as<std::string>() : describe(key);
+  if (k == "kind") return sol::make_object(L, self.kind);
+  if (k == "removed") return sol::make_object(L, !self.scene->world->isValid(self.id));
+  if (k == "remove") {
+    lua_pushcfunction(L, guarded<removeForceHandle>);
+    return sol::stack::pop<sol::object>(L);
+  }
+  const std::string hint = closestName(k, {"kind", "removed", "remove"});
+  fail(L, self.kind, "has no field '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
+}
+
+}  // namespace
+
+void registerWorldType(sol::state& lua) {
+  lua.new_usertype<LuaWorld>("rigidlab.world", sol::no_constructor,
+      sol::meta_function::index, &worldIndex,
+      sol::meta_function::new_index, &worldNewIndex,
+      sol::meta_function::to_string, [](const LuaWorld&) { return std::string("world"); });
+  lua["rigidlab.world"] = sol::lua_nil;
+  lua.new_usertype<LuaForceHandle>("rigidlab.force", sol::no_constructor,
+      sol::meta_function::index, &forceIndex,
+      sol::meta_function::new_index, [](sol::this_state ts, const LuaForceHandle& self, sol::stack_object) {
+        fail(ts, self.kind, "handles are read-only (use world:remove to remove it)");
+      },
+      sol::meta_function::to_string, [](const LuaForceHandle& self) { return self.kind; },
+      sol::meta_function::equal_to, [](const LuaForceHandle& a, const LuaForceHandle& b) { return a.id == b.id && a.scene == b.scene; });
+  lua["rigidlab.force"] = sol::lua_nil;
+}
+
+}  // namespace rigidlab::lua

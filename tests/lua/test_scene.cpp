@@ -1,0 +1,275 @@
+// The Lua layer: Lua forces at every integrator stage, no Lua calls when a scene has no Lua
+// forces, determinism, sandbox limits, and one clean message for every kind of scene mistake.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "rigidlab/lua/scene.h"
+
+using namespace rigidlab;
+using rigidlab::lua::Scene;
+using rigidlab::lua::SceneError;
+
+namespace {
+
+std::unique_ptr<Scene> load(const std::string& source, lua::SceneOptions options = {}) {
+  if (!options.log) options.log = [](const std::string&) {};
+  return Scene::loadString(source, "test.lua", options);
+}
+
+// The message of the SceneError that loading (and, if given, stepping) the scene throws.
+std::string errorOf(const std::string& source, int steps = 0) {
+  try {
+    auto scene = load(source);
+    for (int i = 0; i < steps; ++i) scene->step();
+    scene->runCheck();
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+// Oscillator k = 4π², m = 1, x0 = 0.1 with the spring written in Lua; L∞ position error over the
+// 0.1 s grid up to 10.1 s, relative to x0.
+double luaOscillatorError(double dt) {
+  auto scene = load(R"lua(
+    scene = { gravity = {0, 0}, integrator = "rk4" }
+    function PopulateWorld(world)
+      local b = world:add_circle{ name = "b", radius = 0.05, mass = 1, position = {0.1, 0} }
+      local k = 4 * math.pi ^ 2
+      world:add_force{ body = b, evaluate = function(s) return -k * s.position.x, -k * s.position.y end }
+    end)lua");
+  const BodyId b = *scene->world().findBody(std::string_view("b"));
+  const long per_sample = std::lround(0.1 / dt);
+  double err = 0;
+  for (int sample = 1; sample <= 101; ++sample) {
+    for (long i = 0; i < per_sample; ++i) scene->step(dt);
+    const double t = sample * 0.1;
+    err = std::max(err, std::abs(scene->world().body(b).center.x() - 0.1 * std::cos(2 * std::numbers::pi * t)) / 0.1);
+  }
+  return err;
+}
+
+}  // namespace
+
+TEST_CASE("a scene without Lua forces makes no call into Lua during a step") {
+  auto scene = load(R"lua(
+    function PopulateWorld(world)
+      world:add_box{ width = 20, height = 1, position = {0, -0.5}, static = true }
+      local b = world:add_circle{ radius = 0.5, position = {0, 3} }
+      world:add_spring{ a = b, anchor = {0, 6}, stiffness = 20, damping = 0.1 }
+      world:add_damper{ body = b, coefficient = 0.2 }
+    end
+    function Check(world) end)lua");
+  const long before = scene->luaCalls();
+  for (int i = 0; i < 120; ++i) scene->step();
+  CHECK(scene->luaCalls() == before);
+  scene->runCheck();
+  CHECK(scene->luaCalls() == before + 1);
+}
+
+TEST_CASE("a Lua force is called at every integrator stage: 4 per RK4 step, 1 per Euler step") {
+  auto scene = load(R"lua(
+    scene = { integrator = "rk4", dt = 0.1 }
+    times = {}
+    function PopulateWorld(world)
+      local b = world:add_circle{ radius = 0.5 }
+      world:add_force{ body = b, evaluate = function(s) times[#times + 1] = s.time return 0, 0 end }
+    end
+    function Check(world)
+      -- RK4 stage times of the first step: t, t + h/2, t + h/2, t + h
+      local expected = {0, 0.05, 0.05, 0.1}
+      for i = 1, 4 do
+        if math.abs(times[i] - expected[i]) > 1e-15 then error("stage " .. i .. " at t = " .. times[i]) end
+      end
+    end)lua");
+  const long before = scene->luaCalls();
+  scene->step();
+  CHECK(scene->luaCalls() - before == 4);
+  scene->runCheck();
+  scene->world().setIntegrator(Integrator::SemiImplicitEuler);
+  const long mid = scene->luaCalls();
+  scene->step();
+  CHECK(scene->luaCalls() - mid == 1);
+}
+
+TEST_CASE("a Lua force keeps RK4 fourth order (evaluated on each stage's state)") {
+  std::vector<double> dts, errs;
+  for (int k = 0; k <= 3; ++k) {
+    dts.push_back(1.0 / (30.0 * std::pow(2.0, k)));
+    errs.push_back(luaOscillatorError(dts.back()));
+  }
+  const double order = std::log(errs.front() / errs.back()) / std::log(dts.front() / dts.back());
+  MESSAGE("RK4 with a Lua force: order " << order);
+  CHECK(order == doctest::Approx(4.0).epsilon(0.075));
+}
+
+TEST_CASE("runs are deterministic: math.random is seeded by the host, body order follows creation") {
+  const std::string source = R"lua(
+    function PopulateWorld(world)
+      world:add_box{ width = 30, height = 1, position = {0, -0.5}, static = true }
+      local names = { alpha = 1, beta = 2, gamma = 3, delta = 4, epsilon = 5 }
+      local sorted = {}
+      for name in pairs(names) do sorted[#sorted + 1] = name end
+      table.sort(sorted)  -- pairs() order varies between runs; sorting makes creation order fixed
+      for _, name in ipairs(sorted) do
+        world:add_circle{ name = name, radius = 0.3 + 0.2 * math.random(), position = {math.random(-5, 5), 2 + 3 * math.random()} }
+      end
+    end)lua";
+  const auto run = [&] {
+    auto scene = load(source);
+    for (int i = 0; i < 200; ++i) scene->step();
+    std::vector<double> state;
+    for (BodyId id : scene->world().bodyIds()) {
+      const Body& b = scene->world().body(id);
+      state.insert(state.end(), {b.center.x(), b.center.y(), b.angle, b.velocity.x(), b.velocity.y()});
+    }
+    return state;
+  };
+  const auto first = run(), second = run();
+  REQUIRE(first.size() == 6 * 5);
+  CHECK(first == second);  // bit-identical
+}
+
+TEST_CASE("every scene mistake is one message: file:line: function: what, with the bad value") {
+  struct Case {
+    const char* source;
+    int steps;
+    const char* message;
+  };
+  const Case cases[] = {
+      {"function PopulateWorld(world)\n  world:add_circle{ radius = -1 }\nend", 0,
+       "test.lua:2: add_circle: radius must be > 0, got -1"},
+      {"function PopulateWorld(world)\n  world:add_box{ widht = 1, height = 2 }\nend", 0,
+       "test.lua:2: add_box: unknown option 'widht' (did you mean 'width'?)"},
+      {"function PopulateWorld(world)\n  world:add_circle{ radius = 'big' }\nend", 0,
+       "test.lua:2: add_circle: radius must be a number, got \"big\""},
+      {"function PopulateWorld(world)\n  world:add_circle{ radius = 1, position = {0/0, 1} }\nend", 0,
+       "test.lua:2: add_circle: position must be finite, got (nan, 1)"},
+      {"function PopulateWorld(world)\n  world:add_circle{ radius = 1, density = 2, mass = 3 }\nend", 0,
+       "test.lua:2: add_circle: mass and density cannot both be given (mass sets the density)"},
+      {"function PopulateWorld(world)\n  world:add_box{ width = 1, height = 1, restitution = 1.5 }\nend", 0,
+       "test.lua:2: add_box: restitution must be between 0 and 1, got 1.5"},
+      {"function PopulateWorld(world)\n  world:add_polygon{ vertices = {{0,0},{1,0},{1,1},{0.5,0.2},{0,1}} }\nend", 0,
+       "test.lua:2: add_polygon: polygon is not convex: it turns clockwise at vertices[4] (0.5, 0.2) (split concave "
+       "shapes into convex pieces)"},
+      {"function PopulateWorld(world)\n  world:add_polygon{ vertices = {{0,0},{1,0},'x'} }\nend", 0,
+       "test.lua:2: add_polygon: vertices[3] must be a point {x, y}, got \"x\""},
+      {"function PopulateWorld(world)\n  world:add_spring{ a = 5, anchor = {0, 0}, stiffness = 1 }\nend", 0,
+       "test.lua:2: add_spring: a must be a body (from world:add_box, add_circle, ...), got 5"},
+      {"function PopulateWorld(world)\n  local b = world:add_circle{ radius = 1 }\n  world:add_spring{ a = b, stiffness = 1 }\nend",
+       0, "test.lua:3: add_spring: anchor is required (or b): a spring ends at a body (b) or at a fixed point (anchor)"},
+      {"function PopulateWorld(world)\n  local b = world:add_circle{ radius = 1 }\n  world:add_force{ body = b, evaluate = 3 }\nend",
+       0, "test.lua:3: add_force: evaluate must be a function(s) returning fx, fy [, torque], got 3"},
+      {"function PopulateWorld(world)\n  world.add_circle{ radius = 1 }\nend", 0,
+       "test.lua:2: add_circle: call it as world:add_circle(...), with a colon; got a table as the world"},
+      {"function PopulateWorld(world)\n  local b = world:add_circle{ radius = 1 }\n  print(b.postion)\nend", 0,
+       "test.lua:3: body: has no field 'postion' (did you mean 'position'?)"},
+      {"function PopulateWorld(world)\n  world.integrator = 'rk5'\nend", 0,
+       "test.lua:2: world.integrator: must be one of euler, semi_implicit_euler, rk4, got \"rk5\""},
+      {"function PopulateWorld(world)\n  local b = world:add_circle{ radius = 1 }\n  world:remove(b)\n  b.mass = 2\nend", 0,
+       "test.lua:4: body.mass: body (id 1) was removed from the world"},
+      {"scene = { dt = 0 }\nfunction PopulateWorld(world) end", 0, "test.lua:1: scene: dt must be > 0, got 0"},
+      {"scene = {\n  title = 'x',\n  gravty = {0, 1},\n}\nfunction PopulateWorld(world) end", 0,
+       "test.lua:1: scene: unknown option 'gravty' (did you mean 'gravity'?)"},
+      {"scene = 5\nfunction PopulateWorld(world) end", 0, "test.lua:1: scene: must be a table of settings, got 5"},
+      {"scene = {}", 0, "test.lua: PopulateWorld is not defined (a scene must define function PopulateWorld(world))"},
+      {"PopulateWorld = 3", 0, "test.lua: PopulateWorld must be a function, got 3"},
+      {"function PopulateWorld(world) end\nOnStep = {}", 0, "test.lua: OnStep must be a function, got a table"},
+      {"function PopulateWorld(world)\n  local x = = 1\nend", 0, "test.lua:2: unexpected symbol near '='"},
+      {"function PopulateWorld(world)\n  foo.bar = 1\nend", 0,
+       "test.lua:2: PopulateWorld: attempt to index a nil value (global 'foo')"},
+      {"function PopulateWorld(world)\n  assert(false, 'my assertion')\nend", 0, "test.lua:2: PopulateWorld: my assertion"},
+      {"function PopulateWorld(world)\n  error({code = 1})\nend", 0, "test.lua:2: PopulateWorld: error object is a table"},
+      {"x = nil + 1\nfunction PopulateWorld(world) end", 0, "test.lua:1: attempt to perform arithmetic on a nil value"},
+      {"function PopulateWorld(world)\n  local b = world:add_circle{ radius = 1 }\n  world:add_force{ body = b,\n    evaluate = function(s) return 0/0, 0 end }\nend",
+       1, "test.lua:4: evaluate: returned a non-finite fx: nan (body id 1, t = 0 s)"},
+      {"function PopulateWorld(world)\n  local b = world:add_circle{ radius = 1 }\n  world:add_force{ body = b, evaluate = function(s) return 1e308 * 10, 0 end }\nend",
+       1, "test.lua:3: evaluate: returned a non-finite fx: inf (body id 1, t = 0 s)"},
+      {"function PopulateWorld(world)\n  local b = world:add_circle{ radius = 1 }\n  world:add_force{ body = b, evaluate = function(s) return 'x' end }\nend",
+       1, "test.lua:3: evaluate: must return fx, fy [, torque] as numbers; fx is \"x\""},
+      {"function PopulateWorld(world)\n  local b = world:add_circle{ radius = 1 }\n  world:add_force{ body = b, evaluate = function(s)\n    error('boom') end }\nend",
+       1, "test.lua:4: evaluate: boom"},
+      {"function PopulateWorld(world) end\nfunction OnStep(world, dt)\n  world:step(-1)\nend", 1,
+       "test.lua:3: step: dt must be > 0, got -1"},
+      {"function PopulateWorld(world) end\nfunction Check(world)\n  error('energy 3.2 J, expected 3.25 J')\nend", 0,
+       "test.lua:3: Check: energy 3.2 J, expected 3.25 J"},
+      {"function PopulateWorld(world)\n  require 'forces.sprng'\nend", 0, "test.lua:2: require: module 'forces.sprng' not found"},
+      {"function PopulateWorld(world)\n  require '../etc/passwd'\nend", 0,
+       "test.lua:2: require: module name must look like \"forces.spring\", got \"../etc/passwd\""},
+      {"function PopulateWorld(world)\n  setmetatable({}, {__gc = function() end})\nend", 0,
+       "test.lua:2: PopulateWorld: setmetatable: __gc metamethods are not allowed in scenes"},
+      {"function PopulateWorld(world)\n  load('x = 1', 'chunk', 'b')\nend", 0,
+       "test.lua:2: PopulateWorld: load: only text chunks can be loaded (mode \"t\"), got mode \"b\""},
+      {"function PopulateWorld(world)\n  os.execute('true')\nend", 0,
+       "test.lua:2: PopulateWorld: attempt to index a nil value (global 'os')"},
+  };
+  for (const Case& c : cases) {
+    CAPTURE(c.source);
+    const std::string message = errorOf(c.source, c.steps);
+    // One line, starting with the expected text (require's message goes on to list the folders).
+    CHECK(message.find('\n') == std::string::npos);
+    CHECK(message.substr(0, std::string(c.message).size()) == c.message);
+  }
+}
+
+TEST_CASE("a Lua force that fails leaves the world as it was before the step") {
+  auto scene = load(R"lua(
+    function PopulateWorld(world)
+      local b = world:add_circle{ name = "b", radius = 1, velocity = {1, 0} }
+      world:add_force{ body = b, evaluate = function(s) if s.time > 0.05 then error("late failure") end return 0, 0 end }
+    end)lua");
+  scene->step();
+  scene->step();
+  scene->step();
+  const World& w = scene->world();
+  const Body before = w.body(*w.findBody(std::string_view("b")));
+  const double t = w.time();
+  CHECK_THROWS_AS(scene->step(), SceneError);
+  CHECK(w.time() == t);
+  const Body& after = w.body(*w.findBody(std::string_view("b")));
+  CHECK(after.center == before.center);
+  CHECK(after.velocity == before.velocity);
+}
+
+TEST_CASE("a binary chunk is refused before the parser sees it") {
+  CHECK(errorOf("\x1bLua\x54\x00 garbage") == "test.lua: binary (precompiled) chunks are not allowed; load Lua source text");
+}
+
+TEST_CASE("the memory cap ends a memory bomb with a clear error, and the host survives") {
+  lua::SceneOptions options;
+  options.limits.memory_bytes = size_t{32} << 20;
+  std::string message;
+  try {
+    load("function PopulateWorld(world)\n  local s = 'x'\n  while true do s = s .. s end\nend", options);
+  } catch (const SceneError& e) {
+    message = e.what();
+  }
+  CHECK(message == "PopulateWorld: not enough memory (the scene's limit is 32 MiB)");
+  // A normal scene still loads afterwards.
+  CHECK(load("function PopulateWorld(world) world:add_circle{ radius = 1 } end")->world().bodyCount() == 1);
+}
+
+TEST_CASE("require finds modules under scripts/ and beside the scene, and reports them for hot reload") {
+  auto scene = load(R"lua(
+    local spring = require "forces.spring"
+    local again = require "forces.spring"
+    assert(spring == again, "modules are loaded once")
+    function PopulateWorld(world) end)lua");
+  const auto files = scene->sourceFiles();
+  REQUIRE(files.size() == 1);  // loadString has no file of its own; one module
+  CHECK(files[0].filename() == "spring.lua");
+  CHECK(files[0].parent_path().filename() == "forces");
+}
+
+TEST_CASE("print goes to the scene's log") {
+  std::vector<std::string> lines;
+  lua::SceneOptions options;
+  options.log = [&](const std::string& line) { lines.push_back(line); };
+  load("function PopulateWorld(world) print('hello', 1, vec2(1, 2), nil) end", options);
+  REQUIRE(lines.size() == 1);
+  CHECK(lines[0] == "hello\t1\tvec2(1, 2)\tnil");
+}
