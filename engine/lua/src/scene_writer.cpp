@@ -49,6 +49,11 @@ class Writer {
   std::string text;
 
   void raw(std::string_view s) { text += s; }
+  // A line break inside a record: no trailing blank, continuation indented.
+  void wrap() {
+    while (!text.empty() && text.back() == ' ') text.pop_back();
+    text += "\n     ";
+  }
 
   void number(const std::string& field, double x) {
     if (!std::isfinite(x)) throw SceneError(field + ": cannot save a non-finite number (" + formatNumber(x) + ")");
@@ -149,12 +154,12 @@ void writeBody(Writer& w, const Body& b, int index) {
     }
     w.raw("}, ");
   }
-  w.raw("\n     ");
+  w.wrap();
   w.field("position", path, position);
   w.field("angle", path, b.angle);
   w.field("velocity", path, b.velocity);
   w.field("angular_velocity", path, b.angular_velocity);
-  w.raw("\n     ");
+  w.wrap();
   w.field("mass", path, b.mass);
   w.field("restitution", path, b.material.restitution);
   w.field("friction", path, b.material.friction);
@@ -238,9 +243,13 @@ std::string sceneSource(const World& world, const SceneSettings& settings) {
   w.raw(dampers);
   w.raw("  },\n}\n\n");
   if (!skipped.empty()) {
-    w.raw("-- Not saved (they are code or interaction, not data):");
-    for (const auto& [kind, n] : skipped) w.raw(" " + std::to_string(n) + " " + kind);
-    w.raw(" force(s).\n\n");
+    w.raw("-- Not saved (code or interaction, not data):");
+    const char* separator = " ";
+    for (const auto& [kind, n] : skipped) {
+      w.raw(separator + kind + " x" + std::to_string(n));
+      separator = ", ";
+    }
+    w.raw(".\n\n");
   }
   w.raw("function PopulateWorld(world)\n  require(\"saved_world\").populate(world, data)\nend\n");
   return std::move(w.text);

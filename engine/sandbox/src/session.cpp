@@ -104,9 +104,12 @@ void adoptScene(Session& s, LoadResult r) {
   s.meter.reset();
   s.watcher.watch(s.scene->sourceFiles());
   if (r.purpose != LoadPurpose::Open) ++s.reloads;
-  if (r.purpose == LoadPurpose::Reload) {
-    // Tests and tools wait for this exact line.
+  // One line per load on standard output ("opened", "reloaded"): tests and tools wait for them.
+  if (r.purpose == LoadPurpose::Reload || (first && r.purpose != LoadPurpose::Open)) {
     std::printf("reloaded %s\n", s.file.string().c_str());
+    std::fflush(stdout);
+  } else if (r.purpose == LoadPurpose::Open) {
+    std::printf("opened %s\n", s.file.string().c_str());
     std::fflush(stdout);
   } else if (r.purpose == LoadPurpose::Reset) {
     s.setStatus("reset: " + s.file.filename().string());

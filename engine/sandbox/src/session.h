@@ -121,8 +121,9 @@ struct Session {
 // Loads `file` (empty: an empty world) on this thread and starts watching it. On failure the
 // session shows an empty world with the error overlay and watches the file, so fixing it loads it.
 void startSession(Session& s, const std::filesystem::path& file);
-// Puts a finished load in place (see LoadPurpose) or shows its error. Prints `reloaded <file>` to
-// standard output after a successful reload.
+// Puts a finished load in place (see LoadPurpose) or shows its error. Prints one line to standard
+// output per successful load: `opened <file>` (a scene opened) or `reloaded <file>` (hot reload,
+// reset); failures go to standard error.
 void adoptScene(Session& s, LoadResult result);
 // Starts loading `file` beside the running scene (the browser, reset, F5, the file watcher).
 void requestLoad(Session& s, const std::filesystem::path& file, LoadPurpose purpose);

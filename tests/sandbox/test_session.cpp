@@ -1,0 +1,442 @@
+// The sandbox without a window: loading, hot reload swaps (and refusals), script errors while
+// running, the tools driven by synthetic SDL events, OnKey/OnDraw hooks, saving.
+#include <doctest/doctest.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+#include <thread>
+
+#include "session.h"
+#include "tools.h"
+
+using namespace rigidlab;
+using namespace rigidlab::sandbox;
+namespace fs = std::filesystem;
+using namespace std::chrono_literals;
+
+namespace {
+
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    char name[] = "/tmp/rigidlab-session-XXXXXX";
+    path = ::mkdtemp(name);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+};
+
+void write(const fs::path& f, const std::string& text) {
+  const fs::path tmp = f.string() + ".new";
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    out << text;
+  }
+  fs::rename(tmp, f);  // as an editor that saves atomically
+}
+
+const char* kBallScene = R"(
+scene = {title = "ball", gravity = {0, 0}, camera = {center = {1, 2}, height = 10}}
+function PopulateWorld(world)
+  world:add_box{width = 20, height = 1, position = {0, -3}, static = true, name = "ground"}
+  world:add_circle{radius = 0.5, position = {0, 0}, velocity = {1, 0}, name = "ball"}
+end
+)";
+
+// Polls the session like the frame loop until `done` or the timeout.
+template <typename Done>
+bool pump(Session& s, Done done, std::chrono::milliseconds timeout = 2000ms) {
+  const auto end = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < end) {
+    updateHotReload(s);
+    if (done()) return true;
+    std::this_thread::sleep_for(5ms);
+  }
+  return false;
+}
+
+SDL_Event mouse(Uint32 type, Vec2 px, Uint8 button = SDL_BUTTON_LEFT) {
+  SDL_Event e{};
+  e.type = type;
+  if (type == SDL_MOUSEMOTION) {
+    e.motion.x = static_cast<Sint32>(px.x());
+    e.motion.y = static_cast<Sint32>(px.y());
+  } else {
+    e.button.button = button;
+    e.button.x = static_cast<Sint32>(px.x());
+    e.button.y = static_cast<Sint32>(px.y());
+  }
+  return e;
+}
+
+SDL_Event key(SDL_Keycode k, Uint16 mod = 0) {
+  SDL_Event e{};
+  e.type = SDL_KEYDOWN;
+  e.key.keysym.sym = k;
+  e.key.keysym.mod = mod;
+  return e;
+}
+
+void click(Session& s, Vec2 world_point) {
+  const Vec2 px = s.camera.worldToScreen(world_point);
+  handleEvent(s, mouse(SDL_MOUSEMOTION, px), {});
+  handleEvent(s, mouse(SDL_MOUSEBUTTONDOWN, px), {});
+  handleEvent(s, mouse(SDL_MOUSEBUTTONUP, px), {});
+}
+
+Vec2 position(const World& w, const char* name) { return w.body(*w.findBody(name)).xf.p; }
+
+}  // namespace
+
+TEST_CASE("session: a scene opens with its camera; a broken start shows the error and loads once fixed") {
+  TempDir dir;
+  const fs::path file = dir.path / "ball.lua";
+  write(file, kBallScene);
+  Session s;
+  s.camera.resize(1280, 720);
+  startSession(s, file);
+  REQUIRE(s.scene_loaded);
+  CHECK(s.world().bodyCount() == 2);
+  CHECK(s.camera.center.x() == 1.0);
+  CHECK(s.camera.heightMetres() == doctest::Approx(10.0));
+
+  const fs::path broken = dir.path / "broken.lua";
+  write(broken, "function PopulateWorld(world)\n  world:add_circle{radius = -1}\nend\n");
+  Session b;
+  startSession(b, broken);
+  CHECK_FALSE(b.scene_loaded);
+  REQUIRE(b.scene);  // an empty world to look at, not a crash
+  CHECK(b.world().bodyCount() == 0);
+  CHECK(b.load_error.find("broken.lua:2:") != std::string::npos);
+  CHECK(b.load_error.find("radius") != std::string::npos);
+  write(broken, kBallScene);
+  CHECK(pump(b, [&] { return b.scene_loaded; }));
+  CHECK(b.world().bodyCount() == 2);
+  CHECK(b.load_error.empty());
+}
+
+TEST_CASE("session: a reload swaps the world within 200 ms and keeps camera, pause and settings") {
+  TempDir dir;
+  const fs::path file = dir.path / "ball.lua";
+  write(file, kBallScene);
+  Session s;
+  s.camera.resize(1280, 720);
+  startSession(s, file);
+  s.camera.center = Vec2(-7, 3);
+  s.camera.zoomAbout(Vec2(100, 100), 2.0);
+  const Camera camera = s.camera;
+  setPaused(s, true);
+  s.overrides.iterations = 37;
+  applyOverrides(s);
+  s.draw.contacts = true;
+
+  std::string changed = kBallScene;
+  changed.replace(changed.find("position = {0, 0}"), 17, "position = {4, 1}");
+  const auto t0 = std::chrono::steady_clock::now();
+  write(file, changed);
+  REQUIRE(pump(s, [&] { return s.reloads == 1; }));
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  CHECK(ms < 200);
+  CHECK(position(s.world(), "ball").x() == 4.0);
+  CHECK(s.camera.center == camera.center);
+  CHECK(s.camera.pixels_per_metre == camera.pixels_per_metre);
+  CHECK(s.paused);
+  CHECK(s.world().settings().iterations == 37);
+  CHECK(s.draw.contacts);
+  // "use the scene's values" restores the scene's settings.
+  clearOverrides(s);
+  CHECK(s.world().settings().iterations == 10);
+}
+
+TEST_CASE("session: a broken save keeps the last good world running exactly as without the save") {
+  TempDir dir;
+  const fs::path file = dir.path / "ball.lua";
+  write(file, kBallScene);
+  Session s, control;
+  startSession(s, file);
+  startSession(control, file);
+  for (int i = 0; i < 30; ++i) {
+    advance(s, 1.0 / 60.0);
+    advance(control, 1.0 / 60.0);
+  }
+  const char* broken[] = {
+      "function PopulateWorld(world)\n  world:add_circle{radius = 1\nend\n",                // syntax error
+      "function PopulateWorld(world)\n  error('boom')\nend\n",                              // runtime error
+      "scene = {dt = -1}\nfunction PopulateWorld(world) end\n",                             // bad setting
+      "function PopulateWorld(world)\n  world:add_box{width = 1, height = 0/0}\nend\n",     // NaN
+      "",                                                                                   // empty file
+  };
+  for (const char* text : broken) {
+    INFO(text);
+    write(file, text);
+    REQUIRE(pump(s, [&] { return !s.load_error.empty(); }));
+    CHECK(s.load_error.find("ball.lua") != std::string::npos);
+    CHECK(s.reloads == 0);
+    for (int i = 0; i < 10; ++i) {
+      advance(s, 1.0 / 60.0);
+      advance(control, 1.0 / 60.0);
+    }
+    CHECK(position(s.world(), "ball") == position(control.world(), "ball"));
+    CHECK(s.world().time() == control.world().time());
+    s.load_error.clear();
+  }
+  write(file, kBallScene);  // fixed: the new world comes in
+  REQUIRE(pump(s, [&] { return s.reloads == 1; }));
+  CHECK(s.load_error.empty());
+  CHECK(s.world().time() == 0.0);
+}
+
+TEST_CASE("session: a failing force script pauses with file:line and leaves the world as before the step") {
+  TempDir dir;
+  const fs::path file = dir.path / "force.lua";
+  write(file, R"(
+scene = {gravity = {0, 0}}
+function PopulateWorld(world)
+  local ball = world:add_circle{radius = 0.5, velocity = {1, 0}, name = "ball"}
+  world:add_force{body = ball, evaluate = function(s)
+    if s.time > 0.2 then error("the force broke") end
+    return 0, 0, 0
+  end}
+end
+)");
+  Session s;
+  startSession(s, file);
+  REQUIRE(s.scene_loaded);
+  for (int i = 0; i < 30 && !s.paused; ++i) advance(s, 1.0 / 60.0);
+  REQUIRE(s.paused);
+  CHECK(s.run_error.find("force.lua:6:") != std::string::npos);
+  CHECK(s.run_error.find("the force broke") != std::string::npos);
+  const double t = s.world().time();
+  CHECK(t <= 0.2 + 1e-12);
+  CHECK(position(s.world(), "ball").x() == doctest::Approx(t));  // v = 1 m/s, no partial step
+  advance(s, 1.0 / 60.0);  // paused: nothing happens
+  CHECK(s.world().time() == t);
+}
+
+TEST_CASE("session: tools add, drag, move, delete and toggle bodies, all undoable") {
+  TempDir dir;
+  const fs::path file = dir.path / "ball.lua";
+  write(file, kBallScene);
+  Session s;
+  s.camera.resize(1280, 720);
+  startSession(s, file);
+  World& w0 = s.world();
+  (void)w0;
+
+  // Circle tool: a click adds a circle of the panel's radius at the cursor.
+  handleEvent(s, key(SDLK_2), {});
+  CHECK(s.tools.tool == Tool::Circle);
+  click(s, Vec2(3, 2));
+  REQUIRE(s.world().bodyCount() == 3);
+  const Body& c = s.world().body(s.selected);
+  CHECK(c.shape.type == ShapeType::Circle);
+  CHECK(c.shape.radius == s.tools.circle_radius);
+  CHECK(c.xf.p.x() == doctest::Approx(3).epsilon(0.02));
+  CHECK(c.xf.p.y() == doctest::Approx(2).epsilon(0.02));
+  handleEvent(s, key(SDLK_z, KMOD_LCTRL), {});
+  CHECK(s.world().bodyCount() == 2);
+  handleEvent(s, key(SDLK_y, KMOD_LCTRL), {});
+  CHECK(s.world().bodyCount() == 3);
+
+  // Box tool: a drag sets the size from corner to corner.
+  handleEvent(s, key(SDLK_3), {});
+  const Vec2 a = s.camera.worldToScreen(Vec2(-4, 1)), b = s.camera.worldToScreen(Vec2(-2, 2));
+  handleEvent(s, mouse(SDL_MOUSEMOTION, a), {});
+  handleEvent(s, mouse(SDL_MOUSEBUTTONDOWN, a), {});
+  handleEvent(s, mouse(SDL_MOUSEMOTION, b), {});
+  handleEvent(s, mouse(SDL_MOUSEBUTTONUP, b), {});
+  REQUIRE(s.world().bodyCount() == 4);
+  const Aabb box = computeAabb(s.world().body(s.selected).shape, s.world().body(s.selected).xf);
+  CHECK(box.upper.x() - box.lower.x() == doctest::Approx(2).epsilon(0.02));
+  CHECK(box.upper.y() - box.lower.y() == doctest::Approx(1).epsilon(0.02));
+
+  // Polygon tool: three clicks and Enter.
+  handleEvent(s, key(SDLK_4), {});
+  click(s, Vec2(5, -1));
+  click(s, Vec2(7, -1));
+  click(s, Vec2(6, 1));
+  handleEvent(s, key(SDLK_RETURN), {});
+  REQUIRE(s.world().bodyCount() == 5);
+  CHECK(s.world().body(s.selected).shape.vertices.size() == 3);
+  // A concave outline is refused with a message; the points stay to be fixed.
+  click(s, Vec2(-8, 0));
+  click(s, Vec2(-6, 0));
+  click(s, Vec2(-7, 0.2));
+  click(s, Vec2(-7, 2));
+  handleEvent(s, key(SDLK_RETURN), {});
+  CHECK(s.world().bodyCount() == 5);
+  CHECK(s.status.find("polygon") != std::string::npos);
+  handleEvent(s, key(SDLK_ESCAPE), {});
+  CHECK(s.tools.polygon.empty());
+
+  // Select tool, running: dragging the ball pulls it towards the cursor with a mouse force.
+  handleEvent(s, key(SDLK_1), {});
+  const Vec2 ball = position(s.world(), "ball");
+  const Vec2 grab = s.camera.worldToScreen(ball), target = s.camera.worldToScreen(ball + Vec2(0, 3));
+  handleEvent(s, mouse(SDL_MOUSEMOTION, grab), {});
+  handleEvent(s, mouse(SDL_MOUSEBUTTONDOWN, grab), {});
+  CHECK(s.tools.gesture == ToolState::Gesture::Drag);
+  const size_t forces = s.world().forceIds().size();
+  CHECK(forces == 1);
+  handleEvent(s, mouse(SDL_MOUSEMOTION, target), {});
+  for (int i = 0; i < 30; ++i) {
+    updateTools(s);
+    advance(s, 1.0 / 60.0);
+  }
+  CHECK(position(s.world(), "ball").y() > ball.y() + 1.0);
+  handleEvent(s, mouse(SDL_MOUSEBUTTONUP, target), {});
+  CHECK(s.world().forceIds().empty());
+
+  // Paused: a drag moves the body; undo puts it back.
+  handleEvent(s, key(SDLK_SPACE), {});
+  REQUIRE(s.paused);
+  const Vec2 before = position(s.world(), "ball");
+  const Vec2 from = s.camera.worldToScreen(before), to = s.camera.worldToScreen(before + Vec2(-2, 0));
+  handleEvent(s, mouse(SDL_MOUSEMOTION, from), {});
+  handleEvent(s, mouse(SDL_MOUSEBUTTONDOWN, from), {});
+  handleEvent(s, mouse(SDL_MOUSEMOTION, to), {});
+  handleEvent(s, mouse(SDL_MOUSEBUTTONUP, to), {});
+  CHECK(position(s.world(), "ball").x() == doctest::Approx(before.x() - 2).epsilon(0.02));
+  handleEvent(s, key(SDLK_z, KMOD_LCTRL), {});
+  CHECK(position(s.world(), "ball").x() == doctest::Approx(before.x()));
+  // Q rotates the selected body while paused.
+  const double angle = s.world().body(s.selected).angle;
+  handleEvent(s, key(SDLK_q), {});
+  CHECK(s.world().body(s.selected).angle == doctest::Approx(angle + std::numbers::pi / 12));
+
+  // T toggles static/dynamic; Delete deletes; undo brings it back.
+  const BodyId id = s.selected;
+  handleEvent(s, key(SDLK_t), {});
+  CHECK(s.world().body(id).isStatic());
+  handleEvent(s, key(SDLK_t), {});
+  CHECK_FALSE(s.world().body(id).isStatic());
+  const int count = s.world().bodyCount();
+  handleEvent(s, key(SDLK_DELETE), {});
+  CHECK(s.world().bodyCount() == count - 1);
+  handleEvent(s, key(SDLK_z, KMOD_LCTRL), {});
+  CHECK(s.world().bodyCount() == count);
+  CHECK(s.world().findBody("ball").has_value());
+
+  // Events ImGui wants are not ours.
+  handleEvent(s, key(SDLK_DELETE), InputCapture{false, true});
+  CHECK(s.world().bodyCount() == count);
+}
+
+TEST_CASE("session: camera gestures: wheel zooms about the cursor, right drag pans, F fits") {
+  TempDir dir;
+  const fs::path file = dir.path / "ball.lua";
+  write(file, kBallScene);
+  Session s;
+  s.camera.resize(1280, 720);
+  startSession(s, file);
+  const Vec2 px(900, 200);
+  handleEvent(s, mouse(SDL_MOUSEMOTION, px), {});
+  const Vec2 under = s.camera.screenToWorld(px);
+  SDL_Event wheel{};
+  wheel.type = SDL_MOUSEWHEEL;
+  wheel.wheel.y = 2;
+  wheel.wheel.preciseY = 2.0f;
+  const double scale = s.camera.pixels_per_metre;
+  handleEvent(s, wheel, {});
+  CHECK(s.camera.pixels_per_metre > scale);
+  CHECK((s.camera.screenToWorld(px) - under).norm() < 1e-9);
+  handleEvent(s, mouse(SDL_MOUSEBUTTONDOWN, px, SDL_BUTTON_RIGHT), {});
+  handleEvent(s, mouse(SDL_MOUSEMOTION, px + Vec2(100, 0)), {});
+  handleEvent(s, mouse(SDL_MOUSEBUTTONUP, px + Vec2(100, 0), SDL_BUTTON_RIGHT), {});
+  CHECK((s.camera.worldToScreen(under) - (px + Vec2(100, 0))).norm() < 1e-6);
+  handleEvent(s, key(SDLK_f), {});
+  const Aabb all = *worldBounds(s.world());
+  const Vec2 lo = s.camera.worldToScreen(all.lower), hi = s.camera.worldToScreen(all.upper);
+  CHECK(lo.x() >= 0);
+  CHECK(hi.x() <= 1280);
+}
+
+namespace {
+struct RecordingDraw : lua::OverlayDraw {
+  int lines = 0, circles = 0;
+  std::vector<std::string> texts;
+  void line(const Vec2&, const Vec2&, const Color&) override { ++lines; }
+  void circle(const Vec2&, double, const Color&) override { ++circles; }
+  void text(const Vec2&, const std::string& t, const Color&) override { texts.push_back(t); }
+};
+}  // namespace
+
+TEST_CASE("session: OnKey gets the keys the sandbox does not use; OnDraw draws through OverlayDraw") {
+  TempDir dir;
+  const fs::path file = dir.path / "hooks.lua";
+  write(file, R"(
+local keys = {}
+function PopulateWorld(world) end
+function OnKey(world, key)
+  keys[#keys + 1] = key
+  if key == "a" then world:add_circle{radius = 0.25, position = {#keys, 0}} end
+end
+function OnDraw(draw)
+  draw:line({0, 0}, {1, 1})
+  draw:circle({0, 0}, 2, {1, 0, 0})
+  draw:text({0, 1}, "keys: " .. table.concat(keys, ","))
+end
+)");
+  Session s;
+  startSession(s, file);
+  REQUIRE(s.scene_loaded);
+  handleEvent(s, key(SDLK_a), {});
+  handleEvent(s, key(SDLK_SPACE), {});  // the sandbox's: pause, not passed on
+  handleEvent(s, key(SDLK_a, KMOD_LCTRL), {});  // with Ctrl: not passed on
+  handleEvent(s, key(SDLK_x), {});
+  CHECK(s.world().bodyCount() == 1);
+  CHECK(s.paused);
+  RecordingDraw d;
+  s.scene->onDraw(d);
+  CHECK(d.lines == 1);
+  CHECK(d.circles == 1);
+  REQUIRE(d.texts.size() == 1);
+  CHECK(d.texts[0] == "keys: a,x");
+}
+
+TEST_CASE("session: save refuses the open scene, writes a new file that loads back") {
+  TempDir dir;
+  const fs::path file = dir.path / "ball.lua";
+  write(file, kBallScene);
+  Session s;
+  s.camera.resize(1280, 720);
+  startSession(s, file);
+  for (int i = 0; i < 20; ++i) advance(s, 1.0 / 60.0);
+  std::string message;
+  CHECK_FALSE(saveWorld(s, file, message));
+  CHECK(message.find("open scene") != std::string::npos);
+  CHECK_FALSE(saveWorld(s, dir.path / "." / "ball.lua", message));  // the same file by another name
+  const fs::path out = suggestSavePath(s);
+  CHECK(out.filename() == "ball_saved.lua");
+  REQUIRE(saveWorld(s, out, message));
+  CHECK(suggestSavePath(s).filename() == "ball_saved_2.lua");
+  // The save is not a change of the open scene: no reload.
+  CHECK_FALSE(pump(s, [&] { return s.reloads > 0; }, 300ms));
+  Session t;
+  t.camera.resize(1280, 720);
+  startSession(t, out);
+  REQUIRE(t.scene_loaded);
+  CHECK(position(t.world(), "ball") == position(s.world(), "ball"));
+  CHECK(t.camera.center == s.camera.center);
+  CHECK(t.camera.pixels_per_metre == doctest::Approx(s.camera.pixels_per_metre));
+}
+
+TEST_CASE("session: fixed step runs the same simulated time at 30, 60 and 144 fps") {
+  TempDir dir;
+  const fs::path file = dir.path / "ball.lua";
+  write(file, kBallScene);
+  double times[3];
+  const double fps[3] = {30, 60, 144};
+  for (int k = 0; k < 3; ++k) {
+    Session s;
+    startSession(s, file);
+    for (int i = 0; i < static_cast<int>(fps[k] * 2); ++i) advance(s, 1.0 / fps[k]);
+    times[k] = s.world().time();
+  }
+  CHECK(times[0] == doctest::Approx(2.0));
+  CHECK(times[1] == times[0]);
+  CHECK(times[2] == times[0]);
+}
