@@ -29,7 +29,7 @@ namespace rigidlab::sandbox {
 
 struct WatchOptions {
   using ms = std::chrono::milliseconds;
-  ms settle{50};          // quiet time after the last event before the files are read
+  ms settle{30};          // quiet time after the last event before the files are read
   ms stale_write{400};    // a file opened for writing and quiet this long is read anyway
   ms missing_grace{1000}; // a watched file that vanished is reported after this long
   ms poll_interval{100};  // polling mode: stat period

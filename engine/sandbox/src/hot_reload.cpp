@@ -1,7 +1,6 @@
 // Loading scenes on a worker thread (hot_reload.h).
 #include "hot_reload.h"
 
-#include <chrono>
 #include <thread>
 
 namespace rigidlab::sandbox {
@@ -30,16 +29,19 @@ void SceneLoader::start(const std::filesystem::path& file, LoadPurpose purpose, 
   // (and its scene) is destroyed on the worker when the thread ends.
   std::thread([job, file, purpose, options] {
     LoadResult r = loadNow(file, purpose, options);
-    std::lock_guard lock(job->mutex);
-    job->result = std::move(r);
-    job->done = true;
+    {
+      std::lock_guard lock(job->mutex);
+      job->result = std::move(r);
+      job->done = true;
+    }
+    job->finished.notify_all();
   }).detach();
 }
 
-std::optional<LoadResult> SceneLoader::poll() {
+std::optional<LoadResult> SceneLoader::poll(std::chrono::milliseconds wait) {
   if (!job_) return std::nullopt;
   std::unique_lock lock(job_->mutex);
-  if (!job_->done) return std::nullopt;
+  if (!job_->finished.wait_for(lock, wait, [&] { return job_->done; })) return std::nullopt;
   LoadResult r = std::move(job_->result);
   lock.unlock();
   job_.reset();

@@ -5,6 +5,8 @@
 // script that never returns from PopulateWorld cannot block the next save's reload.
 #pragma once
 
+#include <chrono>
+#include <condition_variable>
 #include <filesystem>
 #include <memory>
 #include <mutex>
@@ -34,8 +36,9 @@ class SceneLoader {
  public:
   // Starts loading `file` on a worker thread; supersedes any load in flight.
   void start(const std::filesystem::path& file, LoadPurpose purpose, const lua::SceneOptions& options);
-  // The newest load's result once it is done (once), else nothing.
-  std::optional<LoadResult> poll();
+  // The newest load's result once it is done (once), else nothing. Waits up to `wait` for it, so a
+  // small scene started this frame is swapped in this frame rather than the next.
+  std::optional<LoadResult> poll(std::chrono::milliseconds wait = std::chrono::milliseconds(0));
   bool busy() const;
   // Loads on the calling thread (the first scene, so the first frame shows it).
   static LoadResult loadNow(const std::filesystem::path& file, LoadPurpose purpose, const lua::SceneOptions& options);
@@ -43,6 +46,7 @@ class SceneLoader {
  private:
   struct Job {
     std::mutex mutex;
+    std::condition_variable finished;
     bool done = false;
     LoadResult result;
   };

@@ -121,8 +121,15 @@ void requestLoad(Session& s, const fs::path& file, LoadPurpose purpose) {
 }
 
 void updateHotReload(Session& s, Session::Clock::time_point now) {
-  if (!s.file.empty() && s.watcher.poll(now)) requestLoad(s, s.file, LoadPurpose::Reload);
-  if (auto r = s.loader.poll()) adoptScene(s, std::move(*r));
+  bool started = false;
+  if (!s.file.empty() && s.watcher.poll(now)) {
+    requestLoad(s, s.file, LoadPurpose::Reload);
+    started = true;
+  }
+  // A typical scene loads in about a millisecond: wait a little for it (bounded, so a slow or
+  // stuck PopulateWorld costs this frame at most 8 ms) instead of a whole frame.
+  if (auto r = s.loader.poll(started ? std::chrono::milliseconds(8) : std::chrono::milliseconds(0)))
+    adoptScene(s, std::move(*r));
 }
 
 namespace {
