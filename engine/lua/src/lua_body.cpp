@@ -9,6 +9,7 @@
 // A misspelt field is an error naming the closest valid one.
 #include <algorithm>
 
+#include "api_names.h"
 #include "bindings.h"
 #include "lua_args.h"
 #include "rigidlab/error.h"
@@ -16,12 +17,8 @@
 namespace rigidlab::lua {
 namespace {
 
-const std::vector<std::string_view> kReadable = {
-    "position", "angle", "velocity", "angular_velocity", "mass", "static", "name", "restitution",
-    "friction", "static_friction", "id", "center", "inertia", "density", "shape", "radius", "vertices",
-    "removed", "apply_impulse", "apply_force"};
-const std::vector<std::string_view> kWritable = {"position", "angle", "velocity", "angular_velocity", "mass", "static",
-                                                 "name", "restitution", "friction", "static_friction"};
+using api::kBodyReadable;
+using api::kBodyWritable;
 
 World& worldOf(const LuaBody& b) { return *b.scene->world; }
 
@@ -89,8 +86,8 @@ sol::object bodyIndex(sol::this_state ts, const LuaBody& self, sol::stack_object
   if (k == "id") return sol::make_object(L, self.uid);
   if (k == "apply_impulse") return sol::make_object(L, guarded<applyImpulse>);
   if (k == "apply_force") return sol::make_object(L, guarded<applyForce>);
-  if (std::find(kReadable.begin(), kReadable.end(), k) == kReadable.end()) {
-    const std::string hint = closestName(k, kReadable);
+  if (std::find(kBodyReadable.begin(), kBodyReadable.end(), k) == kBodyReadable.end()) {
+    const std::string hint = closestName(k, kBodyReadable);
     fail(L, "body", "has no field '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
   }
   const BodyId id = liveBody(L, self, "body." + k);
@@ -125,9 +122,9 @@ void bodyNewIndex(sol::this_state ts, const LuaBody& self, sol::stack_object key
   if (key.get_type() != sol::type::string) fail(L, "body", "fields are named by strings, got " + describe(key));
   const std::string k = key.as<std::string>();
   const std::string function = "body." + k;
-  if (std::find(kWritable.begin(), kWritable.end(), k) == kWritable.end()) {
-    if (std::find(kReadable.begin(), kReadable.end(), k) != kReadable.end()) fail(L, function, "is read-only");
-    const std::string hint = closestName(k, kWritable);
+  if (std::find(kBodyWritable.begin(), kBodyWritable.end(), k) == kBodyWritable.end()) {
+    if (std::find(kBodyReadable.begin(), kBodyReadable.end(), k) != kBodyReadable.end()) fail(L, function, "is read-only");
+    const std::string hint = closestName(k, kBodyWritable);
     fail(L, "body", "has no field '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
   }
   const BodyId id = liveBody(L, self, function);

@@ -7,6 +7,7 @@
 // Forces, springs and dampers are returned as handles with `kind`, `removed` and `remove()`.
 #include <algorithm>
 
+#include "api_names.h"
 #include "bindings.h"
 #include "lua_args.h"
 #include "lua_force.h"
@@ -15,14 +16,9 @@
 namespace rigidlab::lua {
 namespace {
 
-const std::vector<std::string_view> kBodyOptions = {"position", "angle", "velocity", "angular_velocity", "density",
-                                                    "mass", "restitution", "friction", "static_friction", "static",
-                                                    "name"};
-const std::vector<std::string_view> kFields = {"gravity", "integrator", "dt", "iterations", "time", "step_count",
-                                               "title"};
-const std::vector<std::string_view> kMethods = {"add_box", "add_circle", "add_polygon", "add_spring",
-                                                "add_damper", "add_force", "bodies", "find", "remove", "step",
-                                                "kinetic_energy", "potential_energy"};
+using api::kBodyOptions;
+using api::kWorldFields;
+using api::kWorldMethods;
 
 Scene::Impl& selfWorld(lua_State* L, const sol::stack_object& self, std::string_view function) {
   if (!self.is<LuaWorld>())
@@ -118,7 +114,7 @@ sol::object forceHandle(lua_State* L, Scene::Impl& scene, ForceId id, std::strin
 int addSpring(lua_State* L) {
   Scene::Impl& scene = selfWorld(L, sol::stack_object(L, 1), "add_spring");
   const Options o(L, "add_spring", sol::stack_object(L, 2),
-                  {"a", "b", "anchor", "local_a", "local_b", "stiffness", "rest_length", "damping"});
+                  api::kSpringOptions);
   SpringDef d;
   d.a = bodyOption(L, scene, "add_spring", "a", o.get("a"));
   if (o.has("b") == o.has("anchor"))
@@ -148,7 +144,7 @@ int addSpring(lua_State* L) {
 
 int addDamper(lua_State* L) {
   Scene::Impl& scene = selfWorld(L, sol::stack_object(L, 1), "add_damper");
-  const Options o(L, "add_damper", sol::stack_object(L, 2), {"body", "coefficient", "angular_coefficient"});
+  const Options o(L, "add_damper", sol::stack_object(L, 2), api::kDamperOptions);
   DamperDef d;
   d.body = bodyOption(L, scene, "add_damper", "body", o.get("body"));
   d.coefficient = o.nonNegative("coefficient");
@@ -165,7 +161,7 @@ int addDamper(lua_State* L) {
 
 int addForce(lua_State* L) {
   Scene::Impl& scene = selfWorld(L, sol::stack_object(L, 1), "add_force");
-  const Options o(L, "add_force", sol::stack_object(L, 2), {"body", "evaluate", "duration", "point", "other"});
+  const Options o(L, "add_force", sol::stack_object(L, 2), api::kForceOptions);
   const BodyId body = bodyOption(L, scene, "add_force", "body", o.get("body"));
   const sol::object fn = o.get("evaluate");
   if (fn.get_type() != sol::type::function)
@@ -280,8 +276,8 @@ sol::object method(lua_State* L, std::string_view name) {
 }
 
 void unknownField(lua_State* L, const std::string& k) {
-  std::vector<std::string_view> all = kFields;
-  all.insert(all.end(), kMethods.begin(), kMethods.end());
+  std::vector<std::string_view> all = kWorldFields;
+  all.insert(all.end(), kWorldMethods.begin(), kWorldMethods.end());
   const std::string hint = closestName(k, all);
   fail(L, "world", "has no field '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
 }
@@ -331,8 +327,8 @@ void worldNewIndex(sol::this_state ts, const LuaWorld& self, sol::stack_object k
       if (n != std::floor(n) || n < 1 || n > 10000)
         fail(L, function, "must be a whole number between 1 and 10000, got " + describe(value));
       w.setIterations(static_cast<int>(n));
-    } else if (std::find(kFields.begin(), kFields.end(), k) != kFields.end() ||
-               std::find(kMethods.begin(), kMethods.end(), k) != kMethods.end()) {
+    } else if (std::find(kWorldFields.begin(), kWorldFields.end(), k) != kWorldFields.end() ||
+               std::find(kWorldMethods.begin(), kWorldMethods.end(), k) != kWorldMethods.end()) {
       fail(L, function, "is read-only");
     } else {
       unknownField(L, k);

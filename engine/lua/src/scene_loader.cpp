@@ -3,6 +3,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "api_names.h"
 #include "bindings.h"
 #include "lua_args.h"
 #include "rigidlab/error.h"
@@ -10,8 +11,7 @@
 namespace rigidlab::lua {
 namespace {
 
-const std::vector<std::string_view> kSceneOptions = {"title", "gravity", "dt", "integrator", "iterations", "duration",
-                                                     "camera"};
+using api::kSceneOptions;
 
 // Records the line where the main chunk assigns the global `scene`, so errors in the settings
 // table can point at it: a temporary __newindex on the globals, removed after the chunk ran.
