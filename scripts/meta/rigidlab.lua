@@ -261,3 +261,16 @@ function OnKey(world, key) end
 ---Optional: every frame in the sandbox.
 ---@param draw rigidlab.Draw
 function OnDraw(draw) end
+
+---A body's exact state at a time, for Exact(t).
+---@class rigidlab.ExactState
+---@field position rigidlab.VecLike
+---@field velocity? rigidlab.VecLike
+---@field angle? number
+---@field angular_velocity? number
+
+---Optional: the closed-form solution, keyed by body name (or body). `rigidlab accuracy` measures
+---the error against it; the sandbox shows the live error.
+---@param t number
+---@return table<string|rigidlab.Body, rigidlab.ExactState>
+function Exact(t) end

@@ -67,6 +67,7 @@ TEST_CASE("the editor annotations list exactly the API's names") {
   CHECK(classes.at("ForceOptions") == names({&api::kForceOptions}));
   CHECK(classes.at("SceneSettings") == names({&api::kSceneOptions}));
   CHECK(classes.at("Draw") == std::set<std::string>{"line", "circle", "text"});
+  CHECK(classes.at("ExactState") == std::set<std::string>{"position", "velocity", "angle", "angular_velocity"});
   CHECK(classes.at("BodyState") ==
         std::set<std::string>{"position", "velocity", "center", "angle", "angular_velocity", "mass", "inertia", "time"});
 }

@@ -273,3 +273,29 @@ TEST_CASE("print goes to the scene's log") {
   REQUIRE(lines.size() == 1);
   CHECK(lines[0] == "hello\t1\tvec2(1, 2)\tnil");
 }
+
+TEST_CASE("Exact(t) returns the closed-form states keyed by body name or handle") {
+  auto scene = load(R"lua(
+    scene = { gravity = {0, -10} }
+    local ball
+    function PopulateWorld(world)
+      world:add_circle{ name = "a", radius = 0.5 }
+      ball = world:add_circle{ radius = 0.5, position = {5, 0}, velocity = {1, 0} }
+    end
+    function Exact(t)
+      return { a = { position = {0, -5 * t * t}, velocity = {0, -10 * t} },
+               [ball] = { position = {5 + t, -5 * t * t}, angle = 0 } }
+    end)lua");
+  REQUIRE(scene->hasExact());
+  const auto states = scene->exact(2.0);
+  REQUIRE(states.size() == 2);
+  CHECK(states[0].uid == 1);
+  CHECK(states[0].position.y() == -20.0);
+  CHECK(states[0].velocity.value().y() == -20.0);
+  CHECK_FALSE(states[0].angle.has_value());
+  CHECK(states[1].uid == 2);
+  CHECK(states[1].position.x() == 7.0);
+  CHECK(states[1].angle.value() == 0.0);
+  auto bad = load("function PopulateWorld(w) end\nfunction Exact(t) return { nobody = { position = {0, 0} } } end");
+  CHECK_THROWS_WITH_AS(bad->exact(0.0), "test.lua: Exact: no body is named \"nobody\"", SceneError);
+}

@@ -18,7 +18,7 @@ struct Scene::Impl {
   SceneSettings settings;
   std::filesystem::path file;
   std::string name;  // what messages show as the file name
-  sol::protected_function on_step, check, on_key, on_draw;
+  sol::protected_function on_step, check, on_key, on_draw, exact;
   sol::table handles;       // body uid → its Lua handle, so the same body is always the same object
   sol::object world_handle; // the `world` passed to hooks
   sol::object draw_handle;  // the `draw` passed to OnDraw

@@ -1,4 +1,5 @@
 // Loading a scene and running its hooks (origin.md §3 and §11: PopulateWorld builds the model).
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -148,6 +149,7 @@ std::unique_ptr<Scene::Impl> load(std::string_view source, const std::string& na
   s->check = hook(*s, "Check");
   s->on_key = hook(*s, "OnKey");
   s->on_draw = hook(*s, "OnDraw");
+  s->exact = hook(*s, "Exact");
   call(*s, populate, "PopulateWorld", s->world_handle);
   return s;
 }
@@ -238,6 +240,58 @@ void Scene::onDraw(OverlayDraw& draw) {
     throw;
   }
   d.target = nullptr;
+}
+
+bool Scene::hasExact() const { return defined(impl_->exact); }
+
+std::vector<Scene::ExactState> Scene::exact(double t) {
+  std::vector<ExactState> states;
+  if (!hasExact()) return states;
+  Impl& s = *impl_;
+  ++s.host->calls;
+  auto result = s.exact(t);
+  if (!result.valid()) throw SceneError(s.host->errorText(result, "Exact"));
+  lua_State* L = s.host->L();
+  const sol::object answer = result;
+  const auto bad = [&](const std::string& what) { throw SceneError(s.name + ": Exact: " + what); };
+  if (answer.get_type() != sol::type::table) bad("must return a table {body name = {position = {x, y}, ...}}, got " + describe(answer));
+  answer.push(L);
+  lua_pushnil(L);
+  while (lua_next(L, -2) != 0) {
+    sol::stack_object key(L, -2), value(L, -1);
+    std::optional<BodyId> id;
+    if (key.get_type() == sol::type::string) {
+      id = s.world->findBody(std::string_view(key.as<std::string>()));
+      if (!id) {
+        const std::string name = key.as<std::string>();
+        lua_pop(L, 3);
+        bad("no body is named \"" + name + "\"");
+      }
+    } else if (key.is<LuaBody>() && s.world->isValid(key.as<const LuaBody&>().id)) {
+      id = key.as<const LuaBody&>().id;
+    } else {
+      const std::string k = describe(key);
+      lua_pop(L, 3);
+      bad("keys must be body names or bodies, got " + k);
+    }
+    ExactState e;
+    e.uid = s.world->body(*id).uid;
+    try {
+      const Options o(L, "Exact", sol::object(value), {"position", "velocity", "angle", "angular_velocity"});
+      e.position = o.vec("position");
+      if (o.has("velocity")) e.velocity = o.vec("velocity");
+      if (o.has("angle")) e.angle = o.number("angle");
+      if (o.has("angular_velocity")) e.angular_velocity = o.number("angular_velocity");
+    } catch (const ScriptError& err) {
+      lua_pop(L, 3);
+      throw SceneError(s.name + ": " + err.what());
+    }
+    states.push_back(e);
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+  std::sort(states.begin(), states.end(), [](const ExactState& a, const ExactState& b) { return a.uid < b.uid; });
+  return states;
 }
 
 long Scene::luaCalls() const { return impl_->host->calls; }

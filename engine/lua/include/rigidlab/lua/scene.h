@@ -100,6 +100,18 @@ class Scene {
   bool hasOnDraw() const;
   void onDraw(OverlayDraw& draw);  // OnDraw(draw)
 
+  // Exact(t): a scene that knows its closed-form solution returns, for time t, a table keyed by
+  // body name (or body handle) of states {position = {x, y} [, velocity = {x, y}] [, angle = a]
+  // [, angular_velocity = w]}. Used by `rigidlab accuracy` and the sandbox's live error.
+  struct ExactState {
+    uint32_t uid = 0;  // Body::uid
+    Vec2 position = Vec2::Zero();
+    std::optional<Vec2> velocity;
+    std::optional<double> angle, angular_velocity;
+  };
+  bool hasExact() const;
+  std::vector<ExactState> exact(double t);  // sorted by uid; SceneError on a malformed answer
+
   // Calls made from C++ into Lua so far (hooks and force evaluations): a scene without Lua forces
   // makes none during a step.
   long luaCalls() const;
