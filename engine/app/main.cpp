@@ -26,6 +26,10 @@ usage:
   rigidlab check SCENE.lua load and validate a scene without simulating
   rigidlab bench [SCENE...] [--json] [--reps R]
                            time benchmark scenes (ms per step, stages, memory)
+  rigidlab accuracy [--out DIR] [--scenes ...] [--integrators ...]
+                           error against run time for every integrator and step size
+  rigidlab stability [--out DIR]
+                           stiff and extreme cases: where the simulation stays stable
   rigidlab help            this text; `rigidlab COMMAND --help` for a command's options
 
 Exit status: 0 success, 1 scene error or failed check, 2 usage error.
@@ -76,6 +80,8 @@ int dispatch(const std::vector<std::string>& argv) {
   if (command == "run") return runCommand(rest);
   if (command == "check") return checkCommand(rest);
   if (command == "bench") return benchCommand(rest);
+  if (command == "accuracy") return accuracyCommand(rest);
+  if (command == "stability") return stabilityCommand(rest);
   if (command.starts_with("-") || command.ends_with(".lua")) return sandbox(argv);
   throw UsageError("unknown command '" + command + "'");
 }
