@@ -17,6 +17,7 @@ packages=(
   libsdl2-dev libgl-dev libimgui-dev  # sandbox (libimgui.a holds the SDL2 + OpenGL3 backends)
   xvfb xauth libgl1-mesa-dri          # sandbox tests under a virtual X server, Mesa software GL
   gnuplot-nox                         # accuracy-report pictures
+  clang libclang-rt-14-dev            # libFuzzer targets and the sanitizer runtime (tests/fuzz)
 )
 sol2_version=3.5.0
 
