@@ -92,7 +92,14 @@ void printJson(std::FILE* out, const lua::Scene& scene, const RunInfo& info) {
          jsonNumber(b.angular_velocity) + "}";
   }
   s += "],\"energy\":{\"kinetic\":" + jsonNumber(w.kineticEnergy()) + ",\"potential\":" + jsonNumber(w.potentialEnergy()) +
-       "},\"check\":" + jsonString(info.check) + "}\n";
+       "},\"incidents\":[";
+  first = true;
+  for (const Incident& incident : w.incidents()) {
+    s += first ? "" : ",";
+    first = false;
+    s += jsonString(incident.message());
+  }
+  s += "],\"check\":" + jsonString(info.check) + "}\n";
   std::fputs(s.c_str(), out);
 }
 

@@ -135,9 +135,12 @@ int runCommand(const std::vector<std::string>& argv) {
     Progress progress(!json && !args.flag("quiet"));
     const double end_time = world.time() + static_cast<double>(full_steps) * h + last;
     const long total_steps = full_steps + (last > 0 ? 1 : 0);
+    size_t reported = 0;
     for (long i = 0; i < total_steps; ++i) {
       scene->step(i < full_steps ? h : last);
       ++info.steps;
+      for (; reported < world.incidents().size(); ++reported)
+        std::fprintf(stderr, "warning: %s\n", world.incidents()[reported].message().c_str());
       if (trace && (info.steps % trace_every == 0 || info.steps == total_steps)) trace->write(world);
       progress.update(world.time(), end_time);
     }

@@ -290,3 +290,48 @@ TEST_CASE("uids count bodies in creation order and are never reused; kNextStep f
   w.step(0.5);
   CHECK(w.body(c).velocity.x() == Approx(1.0));
 }
+
+TEST_CASE("NaN firewall: a body whose state becomes non-finite is frozen, reported and cannot poison others") {
+  struct Overflow final : Force {
+    void evaluate(const ForceInput& in, ForceOutput& out) override {
+      out.a.force = {in.time > 0.05 ? NAN : 0.0, 0.0};
+    }
+    std::string_view kind() const override { return "overflow"; }
+  };
+  World w;
+  w.setGravity(Vec2::Zero());
+  const BodyId bad = test::addCircle(w, 0.5, {0, 0});
+  const BodyId neighbour = test::addCircle(w, 0.5, {0.99, 0});  // overlapping: in contact every step
+  w.addForce(std::make_unique<Overflow>(), bad);
+  for (int i = 0; i < 20; ++i) w.step(0.02);
+  REQUIRE(w.incidents().size() == 1);
+  const Incident& incident = w.incidents()[0];
+  CHECK(incident.uid == 1);
+  CHECK(incident.step == 3);  // the first step that evaluates the force after t = 0.05
+  CHECK(incident.cause == "overflow returned a non-finite force or torque");
+  CHECK(incident.message() == "body 1 frozen at step 3 (t = 0.04 s): overflow returned a non-finite force or torque");
+  CHECK(w.body(bad).frozen);
+  CHECK(w.body(bad).isStatic());
+  CHECK(isFinite(w.body(bad).center));
+  CHECK(isFinite(w.body(neighbour).center));
+  CHECK(isFinite(w.body(neighbour).velocity));
+  w.setType(bad, BodyType::Dynamic);
+  CHECK_FALSE(w.body(bad).frozen);
+}
+
+TEST_CASE("NaN firewall: an overflowing spring is named") {
+  World w;
+  w.setGravity(Vec2::Zero());
+  w.setIntegrator(Integrator::SemiImplicitEuler);
+  const BodyId a = test::addCircle(w, 0.1, {1, 0}, 1e-3);
+  SpringDef s;
+  s.a = a;
+  s.stiffness = 1e300;  // ωh ≫ 2: semi-implicit Euler overflows within a few steps
+  s.rest_length = 0.0;
+  w.addSpring(s);
+  for (int i = 0; i < 50 && w.incidents().empty(); ++i) w.step(1.0 / 60.0);
+  REQUIRE(w.incidents().size() == 1);
+  // Either the spring's own force overflowed first or the state did; both name the spring.
+  CHECK(w.incidents()[0].cause.find("spring") != std::string::npos);
+  CHECK(isFinite(w.body(a).center));
+}

@@ -18,6 +18,7 @@
 // be first order on such forces (accuracy.md §3.7).
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "stages.h"
 #include "world_impl.h"
@@ -40,6 +41,12 @@ void evaluateForces(WorldImpl& w, double t0, double t, bool state_dependent, std
     ForceOutput result;
     f.force->evaluate(ForceInput{a, b, t}, result);
     ++w.stats.force_evaluations;
+    // The NaN firewall names the force (nan_guard.cpp); the value still goes through, so the body's
+    // state shows the fault and is frozen after this stage.
+    const auto finite = [](const Wrench& x) { return isFinite(x.force) && std::isfinite(x.torque); };
+    const int32_t index = static_cast<int32_t>(&f - w.forces.data());
+    if (!finite(result.a) && w.force_fault[f.a.index] < 0) w.force_fault[f.a.index] = index;
+    if (b && !finite(result.b) && w.force_fault[f.b.index] < 0) w.force_fault[f.b.index] = index;
     out[f.a.index] += result.a;
     if (b) out[f.b.index] += result.b;
   }
@@ -183,6 +190,7 @@ void integrate(WorldImpl& w, double dt) {
   w.start_angular_velocity.resize(n);
   w.start_center.resize(n);
   w.start_angle.resize(n);
+  w.force_fault.assign(n, -1);
   for (auto* v : {&w.rk4.c0, &w.rk4.v0, &w.rk4.dc, &w.rk4.dv}) v->resize(n);
   for (auto* v : {&w.rk4.a0, &w.rk4.w0, &w.rk4.da, &w.rk4.dw}) v->resize(n);
   for (size_t i = 0; i < n; ++i) {

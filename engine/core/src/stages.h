@@ -6,6 +6,7 @@ namespace rigidlab {
 struct WorldImpl;
 
 void integrate(WorldImpl& w, double dt);   // integrator.cpp      origin.md §5
+void guardNonFinite(WorldImpl& w, const char* stage);  // nan_guard.cpp  after integrate and at the end
 void findPairs(WorldImpl& w);              // broad_phase.cpp     origin.md §7
 void narrowPhase(WorldImpl& w);            // narrow_phase.cpp    origin.md §7
 void solveContacts(WorldImpl& w);          // contact_solver.cpp  origin.md §8–10

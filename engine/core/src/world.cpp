@@ -49,6 +49,7 @@ void World::step(double dt) {
     w.locked = false;
     throw;
   }
+  guardNonFinite(w, "integrate");  // before contacts: a non-finite body must not touch others
   const auto t1 = Clock::now();
   findPairs(w);  // origin.md §7: all pairs, skipping static–static
   const auto t2 = Clock::now();
@@ -57,6 +58,7 @@ void World::step(double dt) {
   solveContacts(w);  // origin.md §8–10: sequential impulses, restitution, friction
   const auto t4 = Clock::now();
   correctPositions(w);  // origin.md §9: penetration removal
+  guardNonFinite(w, "the contact solve");
   const auto t5 = Clock::now();
   w.clock.advance(dt);
   ++w.step_count;
@@ -343,6 +345,7 @@ void World::setType(BodyId id, BodyType type) {
   requireUnlocked(*impl_, "setType");
   Body& b = impl_->get(id);
   b.type = type;
+  if (type == BodyType::Dynamic) b.frozen = false;
   if (b.isStatic()) {
     b.velocity = Vec2::Zero();
     b.angular_velocity = 0.0;
@@ -472,6 +475,7 @@ std::vector<ForceId> World::forceIds() const {
 double World::time() const { return impl_->clock.t; }
 long World::stepCount() const { return impl_->step_count; }
 const StepStats& World::stats() const { return impl_->stats; }
+const std::vector<Incident>& World::incidents() const { return impl_->incidents; }
 
 double World::kineticEnergy() const {
   double e = 0.0;

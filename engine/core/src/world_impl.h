@@ -50,6 +50,7 @@ struct WorldImpl {
   uint32_t next_uid = 1;
   bool locked = false;  // true while step() runs
   StepStats stats;
+  std::vector<Incident> incidents;  // NaN firewall reports (nan_guard.cpp)
 
   // Scratch reused by every step, so a step in steady state allocates nothing.
   std::vector<BodyState> states;      // per slot: state seen by forces
@@ -60,6 +61,7 @@ struct WorldImpl {
   std::vector<Vec2> start_center;     // per slot: state at the start of the step, to undo a failed step
   std::vector<double> start_angle;
   std::vector<double> breakpoints;    // force expiry times inside the current step
+  std::vector<int32_t> force_fault;   // per slot: index of a force that returned a non-finite value, or −1
   struct Rk4Scratch {
     std::vector<Vec2> c0, v0, dc, dv;
     std::vector<double> a0, w0, da, dw;

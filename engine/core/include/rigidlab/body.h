@@ -77,6 +77,11 @@ struct Body {
   double angular_velocity = 0.0; // [rad/s]
   Transform xf;                  // body origin → world
 
+  // Set by the NaN firewall (World::incidents): the body's state became non-finite during a step,
+  // so it was put back where the step began and made static, so it cannot poison other bodies
+  // through contacts. Switching it back to dynamic (World::setType) clears the flag.
+  bool frozen = false;
+
   Vec2 position() const { return xf.p; }
   bool isStatic() const { return type == BodyType::Static; }
   // Velocity of a world point attached to the body: v + ω × (p − c).

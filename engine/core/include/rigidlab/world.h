@@ -77,6 +77,16 @@ struct ContactInfo {
   uint32_t ids[2] = {0, 0};  // feature ids, stable while the same features touch
 };
 
+// A body frozen by the NaN firewall: which body, when, and why.
+struct Incident {
+  uint32_t uid = 0;       // Body::uid
+  std::string name;       // the body's name
+  long step = 0;          // World::stepCount() of the step in which it happened (1-based)
+  double time = 0.0;      // simulation time at the start of that step [s]
+  std::string cause;      // e.g. "spring returned a non-finite force" or "state became non-finite in ..."
+  std::string message() const;  // "body 3 'ball' frozen at step 120 (t = 2 s): <cause>"
+};
+
 // Wall-clock cost and counts of the last step, per stage.
 struct StepStats {
   double integrate_ms = 0, broad_phase_ms = 0, narrow_phase_ms = 0, solve_ms = 0, correct_ms = 0,
@@ -167,6 +177,9 @@ class World {
   double time() const;             // simulated time [s]
   long stepCount() const;
   const StepStats& stats() const;  // of the last step
+  // Bodies the NaN firewall froze so far, oldest first (World::step: a body whose state becomes
+  // non-finite is put back where the step began and made static, and reported here).
+  const std::vector<Incident>& incidents() const;
 
   // Energies [J] (origin.md §12 experiment 2): kinetic Σ ½ m v² + ½ I ω²; potential of gravity
   // −m g·c (zero at the world origin) plus what the forces store (springs ½ k x²).

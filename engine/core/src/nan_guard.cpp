@@ -1,0 +1,54 @@
+// The NaN firewall: a body whose state stops being finite during a step (a force returned 1e308 or
+// NaN, an extreme spring overflowed) is put back where the step began, made static and reported
+// (World::incidents): which body, which step, which force. It runs right after integration, before
+// the contacts are found, so a non-finite body never reaches the contact solver and cannot poison
+// the bodies it touches; and again at the end of the step for anything the solve produced.
+#include <cmath>
+
+#include "rigidlab/error.h"
+#include "stages.h"
+#include "world_impl.h"
+
+namespace rigidlab {
+namespace {
+
+bool finiteState(const Body& b) {
+  return isFinite(b.center) && std::isfinite(b.angle) && isFinite(b.velocity) && std::isfinite(b.angular_velocity);
+}
+
+std::string cause(const WorldImpl& w, uint32_t slot, const char* stage) {
+  if (const int32_t f = w.force_fault[slot]; f >= 0 && w.forces[f].force)
+    return std::string(w.forces[f].force->kind()) + " returned a non-finite force or torque";
+  std::string forces;
+  for (const ForceEntry& f : w.forces)
+    if (f.alive && (f.a.index == slot || f.b.index == slot))
+      forces += (forces.empty() ? "" : ", ") + std::string(f.force->kind());
+  return std::string("its state became non-finite in ") + stage + (forces.empty() ? "" : " (forces on it: " + forces + ")");
+}
+
+}  // namespace
+
+void guardNonFinite(WorldImpl& w, const char* stage) {
+  for (uint32_t i = 0; i < w.bodies.size(); ++i) {
+    if (!w.alive[i]) continue;
+    Body& b = w.bodies[i];
+    if (b.isStatic() || (finiteState(b) && w.force_fault[i] < 0)) continue;
+    w.incidents.push_back({b.uid, b.name, w.step_count + 1, w.clock.t, cause(w, i, stage)});
+    b.center = w.start_center[i];
+    b.angle = w.start_angle[i];
+    b.velocity = Vec2::Zero();
+    b.angular_velocity = 0.0;
+    b.type = BodyType::Static;
+    b.inv_mass = 0.0;
+    b.inv_inertia = 0.0;
+    b.frozen = true;
+    WorldImpl::syncTransform(b);
+  }
+}
+
+std::string Incident::message() const {
+  return "body " + std::to_string(uid) + (name.empty() ? "" : " '" + name + "'") + " frozen at step " +
+         std::to_string(step) + " (t = " + formatNumber(time) + " s): " + cause;
+}
+
+}  // namespace rigidlab
