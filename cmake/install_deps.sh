@@ -15,7 +15,9 @@ packages=(
   doctest-dev                         # C++ tests
   liblua5.4-dev lua5.4                # Lua layer
   libsdl2-dev libgl-dev libimgui-dev  # sandbox (libimgui.a holds the SDL2 + OpenGL3 backends)
+  libstb-dev                          # sandbox screenshots (stb_image_write), PNG checks in tests
   xvfb xauth libgl1-mesa-dri          # sandbox tests under a virtual X server, Mesa software GL
+  xdotool                             # sandbox interaction test: real mouse and keys under Xvfb
   gnuplot-nox                         # accuracy-report pictures
   clang libclang-rt-14-dev            # libFuzzer targets and the sanitizer runtime (tests/fuzz)
 )

@@ -440,3 +440,22 @@ TEST_CASE("session: fixed step runs the same simulated time at 30, 60 and 144 fp
   CHECK(times[1] == times[0]);
   CHECK(times[2] == times[0]);
 }
+
+TEST_CASE("session: a change to a required module reloads the scene") {
+  TempDir dir;
+  write(dir.path / "shapes_helper.lua", "return {radius = 0.5}\n");
+  const fs::path file = dir.path / "uses_module.lua";
+  write(file, R"(
+local helper = require("shapes_helper")
+function PopulateWorld(world)
+  world:add_circle{radius = helper.radius, name = "ball"}
+end
+)");
+  Session s;
+  startSession(s, file);
+  REQUIRE(s.scene_loaded);
+  CHECK(s.watcher.files().size() == 2);
+  write(dir.path / "shapes_helper.lua", "return {radius = 1.5}\n");
+  REQUIRE(pump(s, [&] { return s.reloads == 1; }));
+  CHECK(s.world().body(*s.world().findBody("ball")).shape.radius == 1.5);
+}

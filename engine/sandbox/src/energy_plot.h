@@ -1,5 +1,5 @@
-// The live energy plot (origin.md §12, experiment 2, Fig. 5.3 as it happens): kinetic, potential
-// and total energy against simulated time, over the last `window` seconds.
+// The live energy plot (origin.md §12, experiment 2, Fig. 5.3 as it happens): linear and rotational
+// kinetic, potential and total energy against simulated time, over the last `window` seconds.
 #pragma once
 
 #include <deque>
@@ -9,10 +9,12 @@
 namespace rigidlab::sandbox {
 
 struct EnergySample {
-  double time = 0.0;       // simulated [s]
-  double kinetic = 0.0;    // [J]  Σ ½ m v² + ½ I ω²
-  double potential = 0.0;  // [J]  gravity + springs
-  double total() const { return kinetic + potential; }
+  double time = 0.0;        // simulated [s]
+  double linear = 0.0;      // [J]  Σ ½ m v²   (dynamic bodies)
+  double rotational = 0.0;  // [J]  Σ ½ I ω²
+  double potential = 0.0;   // [J]  gravity + springs (World::potentialEnergy)
+  double kinetic() const { return linear + rotational; }
+  double total() const { return linear + rotational + potential; }
 };
 
 class EnergyHistory {

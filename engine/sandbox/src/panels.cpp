@@ -6,6 +6,7 @@
 #include <imgui_stdlib.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -56,7 +57,7 @@ void sceneSection(Session& s) {
     s.save = {true, suggestSavePath(s).string(), "", false};
   }
   ImGui::SameLine();
-  if (ImGui::Button("Scenes")) s.show_browser = !s.show_browser;
+  if (ImGui::Button("Scenes")) s.show_browser = !s.show_browser;  // also Ctrl+O
   if (s.undo.canUndo()) ImGui::TextColored(kDimColor, "undo: %s", s.undo.undoLabel().c_str());
 }
 
@@ -153,8 +154,8 @@ void drawSection(Session& s) {
 
 void controlsWindow(Session& s) {
   ImGui::SetNextWindowPos(ImVec2(kMargin, kMargin), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(kLeftWidth, 0), ImGuiCond_FirstUseEver);
-  ImGui::Begin("rigidlab");
+  ImGui::SetNextWindowSizeConstraints(ImVec2(kLeftWidth, 0), ImVec2(kLeftWidth, FLT_MAX));
+  ImGui::Begin("rigidlab", nullptr, ImGuiWindowFlags_AlwaysAutoResize);  // grows and shrinks with its sections
   sceneSection(s);
   if (ImGui::CollapsingHeader("Tools", ImGuiTreeNodeFlags_DefaultOpen)) toolsSection(s);
   if (ImGui::CollapsingHeader("World settings")) worldSection(s);
@@ -238,9 +239,10 @@ void bodyWindow(Session& s, PanelState& p) {
     p.edit_before.reset();
     return;
   }
+  // Bottom left, growing upwards, under the controls.
   const ImGuiIO& io = ImGui::GetIO();
-  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - kRightWidth - kMargin, 510), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(kRightWidth, 0), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowPos(ImVec2(kMargin, io.DisplaySize.y - kMargin), ImGuiCond_FirstUseEver, ImVec2(0.0f, 1.0f));
+  ImGui::SetNextWindowSize(ImVec2(kLeftWidth + 40, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("Body");
   const Body& b = w.body(s.selected);
   ImGui::Text("#%u %s   area %.4g m2   I %.4g kg m2", b.uid, b.shape.type == ShapeType::Circle ? "circle" : "polygon",

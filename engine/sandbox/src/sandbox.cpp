@@ -4,7 +4,8 @@
 // example_sdl2_opengl3/main.cpp: SDL2 window + OpenGL 3.3 core context + ImGui's SDL2/OpenGL3
 // backends, with the world drawn by our own renderer underneath the panels.
 //
-// Automation (--frames N): the simulation clock advances exactly 1/60 s per frame instead of the
+// Automation (--frames N): at most N frames; with --screenshot, the last frame drawn (the Nth, or the
+// one during which the window was closed or SIGTERM arrived) is written as a PNG. The simulation clock advances exactly 1/60 s per frame instead of the
 // measured frame time, so the picture after N frames is the same on a fast machine and under a
 // software renderer; frames are still paced at the frame cap in real time, so file changes made
 // during the run (the hot reload tests) are seen as a user would see them.
@@ -188,7 +189,9 @@ int runSandbox(const SandboxOptions& options) {
             quit = true;
           handleEvent(s, event, {io.WantCaptureMouse, io.WantCaptureKeyboard});
         }
-        if (quit) break;
+        // Closed early (window, SIGTERM) under --frames: this frame is still drawn, for the screenshot.
+        const bool last_frame = (options.frames && frame == *options.frames) || quit;
+        if (quit && !(automated && !options.screenshot.empty())) break;
 
         updateHotReload(s);
         advance(s, automated ? kAutomationFrameSeconds : measured);
@@ -206,7 +209,7 @@ int runSandbox(const SandboxOptions& options) {
         ImGui::Render();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 
-        if (automated && frame == *options.frames && !options.screenshot.empty()) {
+        if (automated && last_frame && !options.screenshot.empty()) {
           if (!writeScreenshot(options.screenshot, width, height, error)) {
             std::fprintf(stderr, "rigidlab: screenshot: %s\n", error.c_str());
             exit_code = 1;
@@ -214,6 +217,7 @@ int runSandbox(const SandboxOptions& options) {
         }
         SDL_GL_SwapWindow(w.window);
         updateTitle(w.window, s, title);
+        if (quit) break;
 
         s.last_frame_ms = std::chrono::duration<double, std::milli>(Clock::now() - frame_start).count();
         if (s.loop.frame_cap_hz > 0.0) {

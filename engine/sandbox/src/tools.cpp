@@ -46,7 +46,7 @@ constexpr Shortcut kShortcuts[] = {
     {"F6 F7 F8", "draw bounding boxes / centres of mass / velocities"},
     {"F9", "loop: fixed step / variable step"},
     {"Tab", "show or hide the panels"},
-    {"B", "scene browser"},
+    {"Ctrl+O", "scene browser (scripts/scenes/)"},
     {"other keys", "passed to the scene's OnKey(world, key)"},
 };
 
@@ -163,6 +163,7 @@ bool handleKey(Session& s, const SDL_KeyboardEvent& key) {
   if (ctrl) {
     if (k == SDLK_z && !shift) undo(s);
     else if (k == SDLK_y || (k == SDLK_z && shift)) redo(s);
+    else if (k == SDLK_o) s.show_browser = !s.show_browser;
     else if (k == SDLK_s) {
       s.save.open = true;
       s.save.path = suggestSavePath(s).string();
@@ -227,7 +228,6 @@ bool handleKey(Session& s, const SDL_KeyboardEvent& key) {
       s.setStatus(s.loop.mode == LoopMode::Fixed ? "fixed step" : "variable step");
       break;
     case SDLK_TAB: s.show_panels = !s.show_panels; break;
-    case SDLK_b: s.show_browser = !s.show_browser; break;
     default: return false;
   }
   return true;
