@@ -151,7 +151,7 @@ function ForceHandle:remove() end
 ---The world a scene builds in PopulateWorld.
 ---@class rigidlab.World
 ---@field gravity rigidlab.Vec2 m/s², default (0, −9.80665) (read/write)
----@field integrator "euler"|"semi_implicit_euler"|"rk4" (read/write)
+---@field integrator "euler"|"semi_implicit_euler"|"rk4"|"implicit_euler" (read/write)
 ---@field dt number step size, s (read/write)
 ---@field iterations integer contact solver iterations (read/write)
 ---@field time number simulated time, s (read only)
@@ -232,7 +232,7 @@ function Draw:text(position, text, color) end
 ---@field title? string
 ---@field gravity? rigidlab.VecLike default {0, -9.80665}
 ---@field dt? number default 1/60
----@field integrator? "euler"|"semi_implicit_euler"|"rk4" default "rk4"
+---@field integrator? "euler"|"semi_implicit_euler"|"rk4"|"implicit_euler" default "rk4"
 ---@field iterations? integer default 10
 ---@field duration? number length of a headless run, s, default 10
 ---@field camera? {center?: rigidlab.VecLike, height?: number} initial sandbox view, metres

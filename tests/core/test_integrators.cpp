@@ -10,6 +10,7 @@
 
 using namespace rigidlab;
 using std::numbers::pi;
+using doctest::Approx;
 
 namespace {
 
@@ -252,4 +253,122 @@ TEST_CASE("two-body spring: momentum conserved by every integrator; RK4 matches 
   for (int i = 0; i < 240; ++i) w.step(1.0 / 240.0);
   CHECK(w.body(a).center.x() == doctest::Approx(0.0714139893).epsilon(1e-6));
   CHECK(w.body(b).center.x() == doctest::Approx(1.1761953369).epsilon(1e-7));
+}
+
+TEST_CASE("implicit Euler: a 1e6 N/m spring at 60 Hz stays finite and never gains energy (accuracy.md S1)") {
+  // ω h = 16.7: semi-implicit Euler overflows after ~63 steps, RK4 after ~45.
+  const auto run = [](Integrator integrator) {
+    World w;
+    w.setGravity(Vec2::Zero());
+    w.setIntegrator(integrator);
+    const BodyId body = test::addCircle(w, 0.05, Vec2(0.01, 0.0));
+    SpringDef s;
+    s.a = body;
+    s.stiffness = 1e6;
+    s.rest_length = 0.0;
+    w.addSpring(s);
+    double e = w.kineticEnergy() + w.potentialEnergy();
+    bool increased = false;
+    for (int i = 0; i < 600; ++i) {
+      w.step(1.0 / 60.0);
+      const double next = w.kineticEnergy() + w.potentialEnergy();
+      increased |= next > e * (1 + 1e-9) + 1e-250;  // (the energy decays to subnormal numbers)
+      e = next;
+    }
+    return std::pair{w.incidents().empty() && isFinite(w.body(body).center), !increased};
+  };
+  const auto [finite, monotone] = run(Integrator::ImplicitEuler);
+  CHECK(finite);
+  CHECK(monotone);
+  CHECK_FALSE(run(Integrator::SemiImplicitEuler).first);  // the firewall froze the overflowing body
+  CHECK_FALSE(run(Integrator::RungeKutta4).first);
+}
+
+TEST_CASE("implicit Euler: one step on an undamped spring matches the closed form v₁ = (v₀ − hω²x₀)/(1 + h²ω²)") {
+  World w;
+  w.setGravity(Vec2::Zero());
+  w.setIntegrator(Integrator::ImplicitEuler);
+  const BodyId body = test::addCircle(w, 0.05, Vec2(0.1, 0.0), 2.0);
+  w.setVelocity(body, Vec2(0.3, 0.0));
+  SpringDef s;
+  s.a = body;
+  s.stiffness = 800.0;  // ω² = 400
+  s.rest_length = 0.0;
+  w.addSpring(s);
+  const double h = 0.05, w2 = 400.0;
+  w.step(h);
+  const double v1 = (0.3 - h * w2 * 0.1) / (1 + h * h * w2);
+  CHECK(w.body(body).velocity.x() == Approx(v1).epsilon(1e-12));
+  CHECK(w.body(body).center.x() == Approx(0.1 + h * v1).epsilon(1e-12));
+}
+
+TEST_CASE("dampers never flip the sign of a velocity, whatever c·h/m is (accuracy.md S5)") {
+  for (Integrator integrator : {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler, Integrator::ImplicitEuler,
+                                Integrator::RungeKutta4}) {
+    CAPTURE(integratorName(integrator));
+    World w;
+    w.setGravity(Vec2::Zero());
+    w.setIntegrator(integrator);
+    const BodyId body = test::addCircle(w, 0.5, Vec2::Zero(), 1.0);
+    w.setVelocity(body, Vec2(2.0, 0.0));
+    DamperDef d;
+    d.body = body;
+    d.coefficient = 150.0;  // c h / m = 2.5 at 60 Hz: explicit damping would multiply v by −1.5
+    w.addDamper(d);
+    double previous = 2.0;
+    for (int i = 0; i < 30; ++i) {
+      w.step(1.0 / 60.0);
+      const double v = w.body(body).velocity.x();
+      REQUIRE(v >= 0.0);
+      REQUIRE(v <= previous);
+      previous = v;
+    }
+    if (integrator != Integrator::RungeKutta4) CHECK(w.body(body).velocity.x() == Approx(2.0 / std::pow(3.5, 30)));
+  }
+}
+
+TEST_CASE("a critically damped spring does not destabilise semi-implicit Euler (accuracy.md S6)") {
+  // k = 2916 N/m, c = 108 N·s/m on 1 kg (ζ = 1, ωh = 0.9): with explicit damping the spectral
+  // radius would be 1.25 and the oscillator would blow up.
+  World w;
+  w.setGravity(Vec2::Zero());
+  w.setIntegrator(Integrator::SemiImplicitEuler);
+  const BodyId body = test::addCircle(w, 0.05, Vec2(0.1, 0.0));
+  SpringDef s;
+  s.a = body;
+  s.stiffness = 2916.0;
+  s.rest_length = 0.0;
+  s.damping = 108.0;
+  w.addSpring(s);
+  double e = w.kineticEnergy() + w.potentialEnergy();
+  for (int i = 0; i < 600; ++i) {
+    w.step(1.0 / 60.0);
+    const double next = w.kineticEnergy() + w.potentialEnergy();
+    REQUIRE(next <= e * (1 + 1e-12));
+    e = next;
+  }
+  CHECK(std::abs(w.body(body).center.x()) < 1e-6);
+}
+
+TEST_CASE("implicit Euler is first order on the oscillator, and couples two-body springs") {
+  CHECK(observedOrder(Integrator::ImplicitEuler, sweep(4, 7)) == doctest::Approx(1.0).epsilon(0.1));
+  // Two bodies on a stiff spring (solved together): momentum is conserved.
+  World w;
+  w.setGravity(Vec2::Zero());
+  w.setIntegrator(Integrator::ImplicitEuler);
+  const BodyId a = test::addCircle(w, 0.1, Vec2(0, 0), 1.0);
+  const BodyId b = test::addCircle(w, 0.1, Vec2(1.2, 0), 3.0);
+  w.setVelocity(b, Vec2(0, 0.5));
+  SpringDef s;
+  s.a = a;
+  s.b = b;
+  s.stiffness = 1e5;
+  s.rest_length = 1.0;
+  s.damping = 5.0;
+  w.addSpring(s);
+  for (int i = 0; i < 300; ++i) w.step(1.0 / 60.0);
+  const Vec2 p = 1.0 * w.body(a).velocity + 3.0 * w.body(b).velocity;
+  CHECK(std::abs(p.x()) < 1e-12);
+  CHECK(p.y() == Approx(1.5).epsilon(1e-12));
+  CHECK((w.body(b).center - w.body(a).center).norm() == Approx(1.0).epsilon(1e-2));
 }

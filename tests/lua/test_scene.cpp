@@ -169,7 +169,7 @@ TEST_CASE("every scene mistake is one message: file:line: function: what, with t
       {"function PopulateWorld(world)\n  local b = world:add_circle{ radius = 1 }\n  print(b.postion)\nend", 0,
        "test.lua:3: body: has no field 'postion' (did you mean 'position'?)"},
       {"function PopulateWorld(world)\n  world.integrator = 'rk5'\nend", 0,
-       "test.lua:2: world.integrator: must be one of euler, semi_implicit_euler, rk4, got \"rk5\""},
+       "test.lua:2: world.integrator: must be one of euler, semi_implicit_euler, rk4, implicit_euler, got \"rk5\""},
       {"function PopulateWorld(world)\n  local b = world:add_circle{ radius = 1 }\n  world:remove(b)\n  b.mass = 2\nend", 0,
        "test.lua:4: body.mass: body (id 1) was removed from the world"},
       {"scene = { dt = 0 }\nfunction PopulateWorld(world) end", 0, "test.lua:1: scene: dt must be > 0, got 0"},

@@ -36,12 +36,13 @@ Vec2 relativeVelocity(const Body& a, const Body& b, const ContactPoint& cp) {
 }
 
 // κ: the weight an integrator's position update gives to the velocity gained during the step:
-// 1 for semi-implicit Euler (c += h v_{n+1}), ½ for RK4 (c += h v_n + ½ h² a, exact for a constant
+// 1 for semi-implicit and implicit Euler (c += h v_{n+1}), ½ for RK4 (c += h v_n + ½ h² a, exact for a constant
 // force), 0 for explicit Euler (c += h v_n).
 double restingWeight(Integrator integrator) {
   switch (integrator) {
     case Integrator::ExplicitEuler: return 0.0;
-    case Integrator::SemiImplicitEuler: return 1.0;
+    case Integrator::SemiImplicitEuler:
+    case Integrator::ImplicitEuler: return 1.0;
     case Integrator::RungeKutta4: return 0.5;
   }
   return 0.0;

@@ -15,6 +15,11 @@ void DamperForce::evaluate(const ForceInput& in, ForceOutput& out) {
   out.a.torque = -def_.angular_coefficient * in.a.angular_velocity;
 }
 
+bool DamperForce::linearize(const ForceInput&, ForceJacobian& out) const {
+  out.dv[0][0].diagonal() << -def_.coefficient, -def_.coefficient, -def_.angular_coefficient;
+  return true;
+}
+
 void DamperForce::draw(DebugDraw& dd, const BodyState& a, const BodyState*) const {
   // A small dashpot glyph on the centre of mass: a cylinder (two rails) and a piston rod.
   const Color c{0.5f, 0.8f, 0.9f, 1.0f};

@@ -4,6 +4,8 @@
 //
 //   explicit Euler        c += h v_n,  θ += h ω_n,  v += h a(t_n, y_n),  ω += h α(t_n, y_n)
 //   semi-implicit Euler   v += h a(t_n, y_n), ω += h α(...),  then  c += h v_{n+1},  θ += h ω_{n+1}
+//   implicit Euler        (M − h D − h² K) Δv = h (Q₀ + h K v₀), v += Δv, c += h v_{n+1}: springs and
+//                         dampers linearly implicit (implicit_solve.cpp), stable at any stiffness
 //   RK4                   k1 = f(t, y), k2 = f(t + h/2, y + h k1/2), k3 = f(t + h/2, y + h k2/2),
 //                         k4 = f(t + h, y + h k3),  y += h/6 (k1 + 2 k2 + 2 k3 + k4)
 //
@@ -12,6 +14,9 @@
 // GetDerivative does (Algorithm 6). Forces that do not depend on the state (gravity, a constant push
 // through the centre of mass) are evaluated once per interval; with only such forces RK4 reduces to
 // the exact constant-acceleration update c += h v + ½ h² a, v += h a.
+//
+// In the Euler methods the damping of springs and dampers is linearly implicit, so a damper never
+// flips a velocity's sign (implicit_solve.cpp).
 //
 // Time-limited forces (origin.md §6): a step that straddles a force's end time is split there, so
 // the force acts for exactly its duration. Without the split every integrator, RK4 included, would
@@ -93,23 +98,37 @@ void integrateInterval(WorldImpl& w, double t0, double h) {
 
   switch (w.def.integrator) {
     case Integrator::ExplicitEuler:
-    case Integrator::SemiImplicitEuler: {
+    case Integrator::SemiImplicitEuler:
+    case Integrator::ImplicitEuler: {
       derivative(t0);
-      const bool semi = w.def.integrator == Integrator::SemiImplicitEuler;
+      const bool semi = w.def.integrator != Integrator::ExplicitEuler;
+      // Damping (and for implicit_euler stiffness) of springs and dampers is linearly implicit
+      // (implicit_solve.cpp); without such forces Δv = h a(t_n, y_n).
+      const bool implicit = implicitVelocityChange(w, t0, h, w.def.integrator == Integrator::ImplicitEuler);
       for (uint32_t i = 0; i < n; ++i) {
         if (!isMoving(w, i)) continue;
         Body& b = w.bodies[i];
-        const Accel acc = accelerationOf(w, i, w.wrenches[i]);
+        Vec2 dv;
+        double dw;
+        if (implicit) {
+          const int r = w.implicit.row[i];
+          dv = Vec2(w.implicit.dv[3 * r], w.implicit.dv[3 * r + 1]);
+          dw = w.implicit.dv[3 * r + 2];
+        } else {
+          const Accel acc = accelerationOf(w, i, w.wrenches[i]);
+          dv = h * acc.a;
+          dw = h * acc.alpha;
+        }
         if (semi) {
-          b.velocity += h * acc.a;
-          b.angular_velocity += h * acc.alpha;
+          b.velocity += dv;
+          b.angular_velocity += dw;
           b.center += h * b.velocity;
           b.angle += h * b.angular_velocity;
         } else {
           b.center += h * b.velocity;
           b.angle += h * b.angular_velocity;
-          b.velocity += h * acc.a;
-          b.angular_velocity += h * acc.alpha;
+          b.velocity += dv;
+          b.angular_velocity += dw;
         }
       }
       break;

@@ -7,6 +7,9 @@ struct WorldImpl;
 
 void integrate(WorldImpl& w, double dt);   // integrator.cpp      origin.md §5
 void guardNonFinite(WorldImpl& w, const char* stage);  // nan_guard.cpp  after integrate and at the end
+// The linearly implicit Euler velocity change (implicit_solve.cpp) from the forces in w.wrenches,
+// into w.implicit.dv; false (nothing computed) if no active force can be linearised.
+bool implicitVelocityChange(WorldImpl& w, double t0, double h, bool stiffness);
 void findPairs(WorldImpl& w);              // broad_phase.cpp     origin.md §7
 void narrowPhase(WorldImpl& w);            // narrow_phase.cpp    origin.md §7
 void solveContacts(WorldImpl& w);          // contact_solver.cpp  origin.md §8–10

@@ -148,17 +148,19 @@ std::string_view integratorName(Integrator i) {
     case Integrator::ExplicitEuler: return "euler";
     case Integrator::SemiImplicitEuler: return "semi_implicit_euler";
     case Integrator::RungeKutta4: return "rk4";
+    case Integrator::ImplicitEuler: return "implicit_euler";
   }
   return "";
 }
 
 std::optional<Integrator> parseIntegrator(std::string_view name) {
-  for (Integrator i : {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler, Integrator::RungeKutta4})
+  for (Integrator i : {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler, Integrator::RungeKutta4,
+                       Integrator::ImplicitEuler})
     if (integratorName(i) == name) return i;
   return std::nullopt;
 }
 
-std::string integratorNames() { return "euler, semi_implicit_euler, rk4"; }
+std::string integratorNames() { return "euler, semi_implicit_euler, rk4, implicit_euler"; }
 
 std::string_view positionCorrectionName(PositionCorrection pc) {
   switch (pc) {

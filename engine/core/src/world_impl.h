@@ -2,6 +2,7 @@
 // code sees only world.h. Tests may include it (white-box).
 #pragma once
 
+#include <Eigen/Dense>
 #include <memory>
 #include <vector>
 
@@ -62,6 +63,19 @@ struct WorldImpl {
   std::vector<double> start_angle;
   std::vector<double> breakpoints;    // force expiry times inside the current step
   std::vector<int32_t> force_fault;   // per slot: index of a force that returned a non-finite value, or −1
+  struct ImplicitScratch {  // implicit_solve.cpp
+    std::vector<int> row;     // per slot: row of the body in the system, −1 if not an unknown
+    struct Block {
+      int row, col;
+      Eigen::Matrix3d a;      // −h D − s h² K
+      Eigen::Matrix3d kv;     // s h² K (multiplies v₀ on the right-hand side)
+    };
+    std::vector<Block> blocks;
+    std::vector<Eigen::Vector3d> mass, v0;
+    std::vector<Eigen::Matrix3d> diag;
+    std::vector<char> has_block;
+    Eigen::VectorXd rhs, dv;  // h Q₀ (+ s h² K v₀), and the solution Δv (3 per row)
+  } implicit;
   struct Rk4Scratch {
     std::vector<Vec2> c0, v0, dc, dv;
     std::vector<double> a0, w0, da, dw;

@@ -11,6 +11,8 @@
 #include <cstdint>
 #include <string_view>
 
+#include <Eigen/Core>
+
 #include "rigidlab/body.h"
 #include "rigidlab/math.h"
 
@@ -66,6 +68,20 @@ struct ForceOutput {
   Wrench b;  // on body b (two-body forces); ignored otherwise
 };
 
+// The force's linearisation, for the implicit integrators: derivatives of the generalised forces
+// Q = (F_x, F_y, τ) of body i with respect to the coordinates q = (x, y, θ) and velocities
+// v = (v_x, v_y, ω) of body j, i, j ∈ {a = 0, b = 1}. Start from zero; fill what applies.
+struct ForceJacobian {
+  Eigen::Matrix3d dq[2][2];  // ∂Q_i / ∂q_j  (stiffness)
+  Eigen::Matrix3d dv[2][2];  // ∂Q_i / ∂v_j  (damping)
+  ForceJacobian() {
+    for (auto& row : dq)
+      for (auto& m : row) m.setZero();
+    for (auto& row : dv)
+      for (auto& m : row) m.setZero();
+  }
+};
+
 class Force {
  public:
   virtual ~Force() = default;
@@ -76,6 +92,10 @@ class Force {
   // False if the result does not depend on the body states (e.g. a constant push through the centre
   // of mass): RK4 then evaluates it once per step instead of four times.
   virtual bool dependsOnState() const { return true; }
+  // Fills `out` and returns true if the force can be integrated implicitly (springs, dampers):
+  // implicit_euler then treats its stiffness and damping implicitly, and the Euler methods its
+  // damping (so a damper never flips a velocity's sign). The default: explicit only.
+  virtual bool linearize(const ForceInput& /*in*/, ForceJacobian& /*out*/) const { return false; }
   // Potential energy stored in the force (springs), for World::potentialEnergy. [J]
   virtual double potentialEnergy(const BodyState& /*a*/, const BodyState* /*b*/) const { return 0.0; }
   virtual void draw(DebugDraw& /*dd*/, const BodyState& /*a*/, const BodyState* /*b*/) const {}

@@ -28,10 +28,12 @@ enum class Integrator {
   ExplicitEuler,      // "euler":  x += h v_n,     v += h a_n           order 1, gains energy
   SemiImplicitEuler,  // "semi_implicit_euler": v += h a_n, x += h v_{n+1}   order 1, symplectic
   RungeKutta4,        // "rk4": classic four-stage Runge–Kutta, forces at every stage   order 4
+  ImplicitEuler,      // "implicit_euler": springs and dampers linearised backward Euler   order 1,
+                      //   stable at any stiffness, never gains energy (stiff springs)
 };
 std::string_view integratorName(Integrator);
 std::optional<Integrator> parseIntegrator(std::string_view name);
-std::string integratorNames();  // "euler, semi_implicit_euler, rk4" for error messages
+std::string integratorNames();  // "euler, semi_implicit_euler, rk4, implicit_euler" for error messages
 
 // How penetration left after the velocity solve is removed (origin.md §9).
 enum class PositionCorrection {
