@@ -191,42 +191,46 @@ void browserWindow(Session& s, PanelState& p) {
 void statisticsWindow(Session& s, PanelState& p, Renderer& r) {
   const ImGuiIO& io = ImGui::GetIO();
   ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - kRightWidth - kMargin, kMargin), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(kRightWidth, 0), ImGuiCond_FirstUseEver);
-  ImGui::Begin("Statistics");
+  ImGui::SetNextWindowSizeConstraints(ImVec2(kRightWidth, 0), ImVec2(kRightWidth, FLT_MAX));
+  ImGui::Begin("Statistics", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   p.fps = p.fps == 0.0 ? io.Framerate : 0.9 * p.fps + 0.1 * io.Framerate;
-  ImGui::Text("%.0f fps   work %.2f ms   %d step(s) %.2f ms", p.fps, s.last_frame_ms, s.steps_last_frame, s.last_steps_ms);
+  const StepStats& st = s.world().stats();
+  ImGui::Text("%.0f fps   frame work %.2f ms", p.fps, s.last_frame_ms);
+  ImGui::Text("%d step(s) %.2f ms   step %.3f ms", s.steps_last_frame, s.last_steps_ms, st.total_ms());
   const double ratio = s.meter.ratio();
   if (!s.paused && ratio < 0.97 * s.loop.time_scale)
     ImGui::TextColored(kErrorColor, "slower than real time: %.0f%%", 100.0 * ratio / s.loop.time_scale);
   else
-    ImGui::Text("simulated/real time %.2f   %s", ratio, s.loop.mode == LoopMode::Fixed ? "fixed step" : "variable step");
-  const StepStats& st = s.world().stats();
-  if (ImGui::BeginTable("stages", 2, ImGuiTableFlags_SizingStretchProp)) {
-    const std::pair<const char*, double> rows[] = {
-        {"integrate (forces)", st.integrate_ms}, {"broad phase", st.broad_phase_ms}, {"narrow phase", st.narrow_phase_ms},
-        {"solve", st.solve_ms}, {"correct positions", st.correct_ms}, {"finish", st.finish_ms}, {"step total", st.total_ms()}};
-    for (const auto& [name, ms] : rows) {
-      ImGui::TableNextRow();
-      ImGui::TableNextColumn();
-      ImGui::TextUnformatted(name);
-      ImGui::TableNextColumn();
-      ImGui::Text("%.3f ms", ms);
-    }
-    ImGui::EndTable();
-  }
+    ImGui::Text("sim/real time %.2f   %s", ratio, s.loop.mode == LoopMode::Fixed ? "fixed step" : "variable step");
   ImGui::Text("bodies %d (%d dynamic)   forces %d", st.bodies, st.dynamic_bodies, st.forces);
   ImGui::Text("pairs %d   contacts %d   points %d", st.pairs, st.contacts, st.contact_points);
-  ImGui::Text("force evaluations %ld   Lua calls %ld", st.force_evaluations, s.scene->luaCalls());
-  ImGui::TextColored(kDimColor, "reloads %d   last load %.1f ms", s.reloads, s.last_load_ms);
-  ImGui::TextColored(kDimColor, "watch: %s   %zu vertices drawn", s.watcher.usingInotify() ? "inotify" : "polling",
-                     r.vertexCount());
+  if (ImGui::CollapsingHeader("step stages")) {
+    if (ImGui::BeginTable("stages", 2, ImGuiTableFlags_SizingStretchProp)) {
+      const std::pair<const char*, double> rows[] = {
+          {"integrate", st.integrate_ms},     {"  of it forces", st.forces_ms}, {"broad phase", st.broad_phase_ms},
+          {"narrow phase", st.narrow_phase_ms}, {"solve", st.solve_ms},         {"correct positions", st.correct_ms},
+          {"finish", st.finish_ms},           {"step total", st.total_ms()}};
+      for (const auto& [name, ms] : rows) {
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(name);
+        ImGui::TableNextColumn();
+        ImGui::Text("%.3f ms", ms);
+      }
+      ImGui::EndTable();
+    }
+    ImGui::Text("force evaluations %ld   Lua calls %ld", st.force_evaluations, s.scene->luaCalls());
+    ImGui::TextColored(kDimColor, "reloads %d   last load %.1f ms", s.reloads, s.last_load_ms);
+    ImGui::TextColored(kDimColor, "watch: %s   %zu vertices drawn", s.watcher.usingInotify() ? "inotify" : "polling",
+                       r.vertexCount());
+  }
   ImGui::End();
 }
 
 void energyWindow(Session& s) {
   const ImGuiIO& io = ImGui::GetIO();
-  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - kRightWidth - kMargin, 282), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(kRightWidth, 220), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - kRightWidth - kMargin, 140), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(kRightWidth, 200), ImGuiCond_FirstUseEver);
   ImGui::Begin("Energy");
   const float text_rows = 3 * ImGui::GetTextLineHeightWithSpacing() + 8;
   drawEnergyPlot(s.energy, std::max(60.0f, ImGui::GetContentRegionAvail().y - text_rows));

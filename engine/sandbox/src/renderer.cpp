@@ -128,7 +128,7 @@ void Renderer::drawSegment(const Vec2& a, const Vec2& b, const Color& color) {
   const Vec2 d = b - a;
   const double length = d.norm();
   if (!(length > 0.0) || !std::isfinite(length)) return;
-  const Vec2 side = perp(d / length) * camera_.metres(0.5 * lineWidthPixels);
+  const Vec2 side = perp(d / length) * camera_.metres(0.5 * line_width_pixels);
   triangle(a - side, a + side, b + side, color);
   triangle(a - side, b + side, b - side, color);
 }

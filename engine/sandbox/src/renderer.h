@@ -60,7 +60,7 @@ class Renderer final : public DebugDraw, public lua::OverlayDraw {
   void drawPolyline(std::span<const Vec2> points, bool closed, const Color& color);
 
   size_t vertexCount() const { return last_vertex_count_; }  // of the last flush
-  float lineWidthPixels = 1.5f;
+  float line_width_pixels = 1.5f;
 
  private:
   struct Vertex {

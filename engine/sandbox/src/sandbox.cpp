@@ -228,6 +228,9 @@ int runSandbox(const SandboxOptions& options) {
       }
       // A scene that never loaded is a failure for automation (scripts check the exit status).
       if (!s.scene_loaded && !file.empty()) exit_code = 1;
+      // A load still running on its worker thread must not outlive main()'s statics; a script stuck
+      // in PopulateWorld is given a second, then left (the process exits around it).
+      if (s.loader.busy()) s.loader.poll(std::chrono::milliseconds(1000));
     }
   }
   ImGui_ImplOpenGL3_Shutdown();
