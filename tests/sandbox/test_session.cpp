@@ -459,3 +459,32 @@ end
   REQUIRE(pump(s, [&] { return s.reloads == 1; }));
   CHECK(s.world().body(*s.world().findBody("ball")).shape.radius == 1.5);
 }
+
+TEST_CASE("session: the live error against Exact(t); a failing Exact is shown and switched off") {
+  TempDir dir;
+  const fs::path file = dir.path / "exact.lua";
+  // Uniform motion: every integrator is exact up to round-off.
+  write(file, R"(
+scene = {gravity = {0, 0}}
+function PopulateWorld(world)
+  world:add_circle{radius = 0.1, position = {0, 0}, velocity = {2, 1}, name = "p"}
+end
+function Exact(t)
+  if t > 1 then return {p = {position = {2 * t, t}}, nobody = {position = {0, 0}}} end
+  return {p = {position = {2 * t + 0.5, t}, velocity = {2, 1}}}
+end
+)");
+  Session s;
+  startSession(s, file);
+  REQUIRE(s.exact.active);
+  for (int i = 0; i < 30; ++i) advance(s, 1.0 / 60.0);
+  CHECK(s.exact.time == s.world().time());
+  REQUIRE(s.exact.bodies.size() == 1);
+  CHECK(s.exact.max_position == doctest::Approx(0.5));  // the answer is off by 0.5 m on purpose
+  CHECK(s.exact.max_velocity == doctest::Approx(0.0).epsilon(1e-12));
+  CHECK(s.exact.bodies[0].exact_position.x() == doctest::Approx(2 * s.world().time() + 0.5));
+  for (int i = 0; i < 60; ++i) advance(s, 1.0 / 60.0);  // past t = 1: Exact names a missing body
+  CHECK_FALSE(s.exact.active);
+  CHECK(s.exact.error.find("nobody") != std::string::npos);
+  CHECK_FALSE(s.paused);  // a broken readout does not stop the simulation
+}

@@ -96,11 +96,13 @@ void worldSection(Session& s) {
   ImGui::PushItemWidth(150);
   Vec2 g = w.settings().gravity;
   if (inputVec("gravity [m/s2]", &g) && isFinite(g)) o.gravity = g;
-  const Integrator integrators[] = {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler, Integrator::RungeKutta4};
   const std::string current(integratorName(w.settings().integrator));
   if (ImGui::BeginCombo("integrator", current.c_str())) {
-    for (const Integrator i : integrators) {
+    // Every integrator the core has: the enum counts up from 0 and unknown values have no name.
+    for (int k = 0; k < 32; ++k) {
+      const auto i = static_cast<Integrator>(k);
       const std::string name(integratorName(i));
+      if (name.empty()) break;
       if (ImGui::Selectable(name.c_str(), i == w.settings().integrator)) o.integrator = i;
     }
     ImGui::EndCombo();
@@ -150,6 +152,7 @@ void drawSection(Session& s) {
   ImGui::Checkbox("centres (F7)", &d.centers);
   ImGui::SameLine();
   ImGui::Checkbox("velocities (F8)", &d.velocities);
+  ImGui::Checkbox("exact solution ghosts (scenes with Exact)", &d.exact);
 }
 
 void controlsWindow(Session& s) {
@@ -204,6 +207,12 @@ void statisticsWindow(Session& s, PanelState& p, Renderer& r) {
     ImGui::Text("sim/real time %.2f   %s", ratio, s.loop.mode == LoopMode::Fixed ? "fixed step" : "variable step");
   ImGui::Text("bodies %d (%d dynamic)   forces %d", st.bodies, st.dynamic_bodies, st.forces);
   ImGui::Text("pairs %d   contacts %d   points %d", st.pairs, st.contacts, st.contact_points);
+  if (const auto& incidents = s.world().incidents(); !incidents.empty()) {
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextColored(kErrorColor, "%zu body(ies) frozen by the NaN firewall; last: %s", incidents.size(),
+                       incidents.back().message().c_str());
+    ImGui::PopTextWrapPos();
+  }
   if (ImGui::CollapsingHeader("step stages")) {
     if (ImGui::BeginTable("stages", 2, ImGuiTableFlags_SizingStretchProp)) {
       const std::pair<const char*, double> rows[] = {
@@ -234,6 +243,46 @@ void energyWindow(Session& s) {
   ImGui::Begin("Energy");
   const float text_rows = 3 * ImGui::GetTextLineHeightWithSpacing() + 8;
   drawEnergyPlot(s.energy, std::max(60.0f, ImGui::GetContentRegionAvail().y - text_rows));
+  ImGui::End();
+}
+
+void exactWindow(Session& s) {
+  const ExactReadout& x = s.exact;
+  if (!x.active && x.error.empty()) return;
+  const ImGuiIO& io = ImGui::GetIO();
+  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - kRightWidth - kMargin, 350), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(kRightWidth, 0), ImVec2(kRightWidth, FLT_MAX));
+  ImGui::Begin("Exact solution", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  if (!x.error.empty()) {
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextColored(kErrorColor, "Exact failed (off until the scene reloads): %s", x.error.c_str());
+    ImGui::PopTextWrapPos();
+  } else {
+    ImGui::Text("t = %.3f s   max |p - p_exact| = %.3e m", x.time, x.max_position);
+    if (x.max_velocity >= 0.0) ImGui::Text("max |v - v_exact| = %.3e m/s", x.max_velocity);
+    ImGui::Text("largest so far %.3e m", x.worst_position);
+    ImGui::TextColored(kDimColor, "%s, dt = %.4g s", std::string(integratorName(s.world().settings().integrator)).c_str(),
+                       s.dt());
+    std::vector<float> values;
+    for (const auto& [t, e] : x.history) values.push_back(static_cast<float>(e));
+    if (values.size() >= 2)
+      ImGui::PlotLines("##error", values.data(), static_cast<int>(values.size()), 0, "position error", 0.0f, FLT_MAX,
+                       ImVec2(kRightWidth - 20, 60));
+    if (ImGui::BeginTable("bodies", 3, ImGuiTableFlags_SizingStretchProp)) {
+      int shown = 0;
+      for (const BodyError& e : x.bodies) {
+        if (++shown > 8) break;
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::Text("%s", e.name.empty() ? ("#" + std::to_string(e.uid)).c_str() : e.name.c_str());
+        ImGui::TableNextColumn();
+        ImGui::Text("%.2e m", e.position);
+        ImGui::TableNextColumn();
+        if (e.velocity >= 0.0) ImGui::Text("%.2e m/s", e.velocity);
+      }
+      ImGui::EndTable();
+    }
+  }
   ImGui::End();
 }
 
@@ -417,6 +466,7 @@ void drawPanels(Session& s, PanelState& p, Renderer& renderer) {
     controlsWindow(s);
     statisticsWindow(s, p, renderer);
     energyWindow(s);
+    exactWindow(s);
     bodyWindow(s, p);
   }
   browserWindow(s, p);

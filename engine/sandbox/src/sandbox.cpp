@@ -111,6 +111,16 @@ void drawWorld(Session& s, Renderer& renderer) {
   options.selected = s.selected;
   if (!s.paused) options.transforms = s.history.interpolate(s.world(), s.alpha);
   s.world().draw(renderer, options);
+  if (s.draw.exact && s.exact.active) {
+    // Where Exact(t) puts each body origin (at the time of the last step, like the drawn state).
+    const Color ghost{1.0f, 0.6f, 0.1f, 0.9f};
+    const double arm = s.camera.metres(7.0);
+    for (const BodyError& e : s.exact.bodies) {
+      const Vec2& p = e.exact_position;
+      renderer.drawSegment(p - Vec2(arm, arm), p + Vec2(arm, arm), ghost);
+      renderer.drawSegment(p - Vec2(arm, -arm), p + Vec2(arm, -arm), ghost);
+    }
+  }
   drawToolOverlay(s, renderer);
   if (s.scene->hasOnDraw() && s.draw_error.empty()) {
     try {

@@ -60,6 +60,7 @@ void startSession(Session& s, const fs::path& file) {
   if (!s.scene) {
     s.scene = emptyScene(s.scene_options);
     s.scene_values = currentValues(*s.scene);
+    s.exact.reset(*s.scene);
     placeCamera(s);
   }
 }
@@ -98,6 +99,9 @@ void adoptScene(Session& s, LoadResult r) {
   s.history.clear();
   s.energy.clear();
   s.energy.sample(s.world());
+  s.exact.reset(*s.scene);
+  s.exact.update(*s.scene);
+  s.incidents_seen = 0;
   s.selected = {};
   s.tools.polygon.clear();
   s.clock.reset();
@@ -134,6 +138,19 @@ void updateHotReload(Session& s, Session::Clock::time_point now) {
 
 namespace {
 
+// After steps: the readouts that follow the state (energy plot, live error against Exact(t)), and
+// bodies the core's NaN firewall froze, which are reported once each.
+void afterSteps(Session& s) {
+  s.energy.sample(s.world());
+  s.exact.update(*s.scene);
+  const auto& incidents = s.world().incidents();
+  for (; s.incidents_seen < incidents.size(); ++s.incidents_seen) {
+    const std::string message = incidents[s.incidents_seen].message();
+    std::fprintf(stderr, "rigidlab: %s\n", message.c_str());
+    s.setStatus(message, 8.0);
+  }
+}
+
 // One step with the error policy of the issue: a failing script pauses the run and says why.
 bool guardedStep(Session& s, double dt) {
   try {
@@ -168,14 +185,14 @@ void advance(Session& s, double frame_seconds) {
   s.alpha = s.paused ? 1.0 : plan.alpha;
   s.behind = plan.behind;
   s.meter.add(frame_seconds, s.steps_last_frame * plan.step_dt);
-  if (s.steps_last_frame > 0) s.energy.sample(s.world());
+  if (s.steps_last_frame > 0) afterSteps(s);
 }
 
 void stepOnce(Session& s) {
   setPaused(s, true);
   s.history.capture(s.world());
   s.run_error.clear();
-  if (guardedStep(s, s.dt())) s.energy.sample(s.world());
+  if (guardedStep(s, s.dt())) afterSteps(s);
   s.alpha = 1.0;
 }
 

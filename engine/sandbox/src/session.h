@@ -13,6 +13,7 @@
 
 #include "camera.h"
 #include "energy_plot.h"
+#include "exact_readout.h"
 #include "file_watcher.h"
 #include "frame_clock.h"
 #include "hot_reload.h"
@@ -24,6 +25,7 @@ namespace rigidlab::sandbox {
 
 struct DrawToggles {
   bool grid = true, shapes = true, springs = true, forces = true;
+  bool exact = true;  // ghosts of Exact(t)'s positions, for scenes that define it
   bool contacts = false, normals = false, impulses = false, aabbs = false, centers = false, velocities = false;
 };
 
@@ -99,6 +101,8 @@ struct Session {
   UndoHistory undo;
   TransformHistory history;
   EnergyHistory energy;
+  ExactReadout exact;
+  size_t incidents_seen = 0;  // World::incidents() already reported
   SaveDialog save;
 
   // --- hot reload and errors
