@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "interpolation.h"
+#include "world_view.h"
 
 using namespace rigidlab;
 using namespace rigidlab::sandbox;
@@ -68,4 +69,46 @@ TEST_CASE("interpolation: an angle that wraps turns the short way") {
   const auto xfs = h.interpolate(world, 0.5);
   const double angle = std::atan2(xfs[id.index].q.s, xfs[id.index].q.c);
   CHECK(std::abs(std::abs(angle) - std::numbers::pi) < 1e-9);  // through π, not through 0
+}
+
+namespace {
+struct Segments : DebugDraw {
+  std::vector<std::pair<Vec2, Vec2>> segments;
+  void drawPolygon(std::span<const Vec2>, const Color&, const Color&) override {}
+  void drawCircle(const Vec2&, double, double, const Color&, const Color&) override {}
+  void drawSegment(const Vec2& a, const Vec2& b, const Color&) override { segments.emplace_back(a, b); }
+  void drawPoint(const Vec2&, float, const Color&) override {}
+};
+}  // namespace
+
+TEST_CASE("interpolation: springs are drawn from the interpolated pose, not the last step's") {
+  World world(WorldDef{.gravity = Vec2(0, 0)});
+  BodyDef def;
+  def.shape = makeCircle(0.2);
+  def.position = Vec2(1, 0);
+  def.velocity = Vec2(0, 30);  // fast: 0.5 m per 60 Hz step
+  const BodyId bob = world.createBody(def);
+  SpringDef spring;
+  spring.a = bob;
+  spring.anchor = Vec2(-3, 0);
+  spring.stiffness = 1;
+  world.addSpring(spring);
+  TransformHistory h;
+  h.capture(world);
+  const Vec2 before = world.body(bob).xf.p;
+  world.step(1.0 / 60.0);
+  const Vec2 after = world.body(bob).xf.p;
+  REQUIRE((after - before).norm() > 0.4);
+  for (const double alpha : {0.0, 0.5, 1.0}) {
+    Segments s;
+    drawForces(world, h.interpolate(world, alpha), DrawToggles{}, s);
+    REQUIRE_FALSE(s.segments.empty());
+    const Vec2 expected = before + alpha * (after - before);
+    CHECK((s.segments.front().first - expected).norm() < 1e-9);  // the spring starts at the bob
+  }
+  Segments none;
+  DrawToggles off;
+  off.springs = false;
+  drawForces(world, h.interpolate(world, 0.5), off, none);
+  CHECK(none.segments.empty());
 }

@@ -29,6 +29,7 @@
 #include "screenshot.h"
 #include "session.h"
 #include "tools.h"
+#include "world_view.h"
 
 namespace rigidlab::sandbox {
 
@@ -109,8 +110,12 @@ void drawWorld(Session& s, Renderer& renderer) {
   options.centers = s.draw.centers;
   options.velocities = s.draw.velocities;
   options.selected = s.selected;
-  if (!s.paused) options.transforms = s.history.interpolate(s.world(), s.alpha);
+  if (!s.paused) {
+    options.transforms = s.history.interpolate(s.world(), s.alpha);
+    options.springs = options.forces = false;  // drawn below, at the same poses
+  }
   s.world().draw(renderer, options);
+  if (!options.transforms.empty()) drawForces(s.world(), options.transforms, s.draw, renderer);
   if (s.draw.exact && s.exact.active) {
     // Where Exact(t) puts each body origin (at the time of the last step, like the drawn state).
     const Color ghost{1.0f, 0.6f, 0.1f, 0.9f};
