@@ -18,6 +18,15 @@ LuaForce::LuaForce(ScriptHost& host, const sol::function& evaluate, std::optiona
   function_ref_ = luaL_ref(L_, LUA_REGISTRYINDEX);
   state_ = makeState();
   if (two_body_) other_ = makeState();
+  // Fill the tables once here, inside the add_force call: every key then exists, so refilling them
+  // in evaluate() (outside any protected call) never allocates and cannot hit the memory cap.
+  const BodyState zero;
+  pushState(state_, zero, 0.0);
+  lua_pop(L_, 1);
+  if (two_body_) {
+    pushState(other_, zero, 0.0);
+    lua_pop(L_, 1);
+  }
 }
 
 LuaForce::~LuaForce() {
@@ -64,6 +73,9 @@ void LuaForce::pushState(const StateRefs& refs, const BodyState& s, double time)
 
 void LuaForce::evaluate(const ForceInput& in, ForceOutput& out) {
   lua_State* L = L_;
+  // Inside Scene::step this only counts (the step's window is armed at its first Lua force); a
+  // World::step called directly gives each evaluation its own window.
+  const Budget::Scope budget(host_.budget(), Budget::Kind::Force);
   const int top = lua_gettop(L);
   lua_pushcfunction(L, messageHandler);
   lua_rawgeti(L, LUA_REGISTRYINDEX, function_ref_);
@@ -74,8 +86,10 @@ void LuaForce::evaluate(const ForceInput& in, ForceOutput& out) {
     nargs = 2;
   }
   ++host_.calls;
-  if (lua_pcall(L, nargs, 3, top + 1) != LUA_OK) {
-    std::string message = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "error";
+  if (const int status = lua_pcall(L, nargs, 3, top + 1); status != LUA_OK) {
+    std::string message = status == LUA_ERRMEM ? "not enough memory (the scene's limit is " +
+                                                     std::to_string(host_.limits().memory_bytes >> 20) + " MiB)"
+                          : lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "error";
     lua_settop(L, top);
     throw ScriptError(host_.errorText(std::move(message), "evaluate"));
   }

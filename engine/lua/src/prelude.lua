@@ -99,14 +99,21 @@ host.register_vec2(vec2_mt)
 _ENV.vec2 = vec2
 
 ---------------------------------------------------------------------------------------------------
--- Sandbox wrappers (README "Security"): text-only load, no __gc finalizers, no garbage-collector
--- control, no way back to the originals (they live only in these upvalues).
+-- Sandbox wrappers (README "Security"): text-only, size-capped load, no __gc finalizers, no
+-- garbage-collector control, pcall/xpcall that cannot swallow a spent budget, no way back to the
+-- originals (they live only in these upvalues).
 
 local raw_load, raw_setmetatable, raw_collectgarbage = load, _ENV.setmetatable, collectgarbage
+local raw_pcall, raw_xpcall, source_limit = pcall, xpcall, host.source_limit
+local budget_check, budget_expired = host.budget_check, host.budget_expired
 
 function load(chunk, chunkname, mode, env)
   if mode ~= nil and mode ~= "t" then
     error("load: only text chunks can be loaded (mode \"t\"), got mode " .. host.describe(mode), 2)
+  end
+  -- The parser runs in C, where the time budget cannot stop it: cap what it is given.
+  if type(chunk) == "string" and #chunk > source_limit then
+    error(string.format("load: chunk is %d bytes, larger than the limit of %d", #chunk, source_limit), 2)
   end
   if env == nil then return raw_load(chunk, chunkname, "t") end
   return raw_load(chunk, chunkname, "t", env)
@@ -122,6 +129,26 @@ end
 function collectgarbage(opt, ...)
   if opt == "count" then return raw_collectgarbage("count") end
   error("collectgarbage: only collectgarbage(\"count\") is available in scenes", 2)
+end
+
+-- A spent time budget (budget.h) is not an error a script may catch: once the call that failed
+-- returns, the budget error is raised again (the sticky hook does the same at the next instruction).
+local function rethrow_budget(ok, ...)
+  if not ok then budget_check() end
+  return ok, ...
+end
+
+function pcall(f, ...) return rethrow_budget(raw_pcall(f, ...)) end
+
+-- The message handler of an error raised by the budget hook runs with Lua's hooks disabled (the
+-- error leaves the hook by a throw, and the handler runs before the unwinding), so a looping
+-- handler could never be stopped: once the budget is spent, the user's handler is not called.
+function xpcall(f, handler, ...)
+  if type(handler) ~= "function" then return raw_xpcall(f, handler, ...) end
+  return rethrow_budget(raw_xpcall(f, function(m)
+    if budget_expired() then return m end
+    return handler(m)
+  end, ...))
 end
 
 dofile, loadfile = nil, nil

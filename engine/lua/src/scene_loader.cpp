@@ -56,7 +56,13 @@ void readSettings(Scene::Impl& s, WorldDef& def, const std::string& at) {
   if (table.get_type() == sol::type::lua_nil) return;
   try {
     if (table.get_type() != sol::type::table) fail(L, "scene", "must be a table of settings, got " + describe(table));
-    const Options o(L, "scene", table, kSceneOptions);
+    std::vector<std::string_view> known = kSceneOptions;
+    known.push_back("memory_limit");  // hardening: the scene's own, lower memory cap (MiB)
+    const Options o(L, "scene", table, known);
+    if (o.has("memory_limit")) {
+      const double cap = static_cast<double>(s.host->limits().memory_bytes >> 20);
+      s.host->lowerMemoryLimit(static_cast<size_t>(o.inRange("memory_limit", 1, cap) * double(1 << 20)));
+    }
     s.settings.title = o.string("title", s.settings.title);
     def.gravity = o.vec("gravity", def.gravity);
     s.settings.dt = o.positive("dt", s.settings.dt);
@@ -92,8 +98,13 @@ bool defined(const sol::protected_function& f) { return f.valid() && f.get_type(
 template <typename... Args>
 void call(Scene::Impl& s, const sol::protected_function& f, std::string_view name, Args&&... args) {
   ++s.host->calls;
-  auto result = f(std::forward<Args>(args)...);
-  if (!result.valid()) throw SceneError(s.host->errorText(result, name));
+  std::string error;
+  {
+    const Budget::Scope budget(s.host->budget(), Budget::Kind::Hook);
+    auto result = f(std::forward<Args>(args)...);
+    if (!result.valid()) error = s.host->errorText(result, name);
+  }
+  if (!error.empty()) throw SceneError(error);
 }
 
 std::unique_ptr<Scene::Impl> load(std::string_view source, const std::string& name, const std::filesystem::path& file,
@@ -118,15 +129,19 @@ std::unique_ptr<Scene::Impl> load(std::string_view source, const std::string& na
   lua_setmetatable(L, -2);
   lua_pop(L, 1);
   ++s->host->calls;
-  auto ran = chunk();
+  std::string chunk_error;
+  {
+    const Budget::Scope budget(s->host->budget(), Budget::Kind::Hook);
+    auto ran = chunk();
+    if (!ran.valid()) chunk_error = s->host->errorText(ran, "");
+  }
   lua_pushglobaltable(L);
   lua_pushnil(L);
   lua_setmetatable(L, -2);
   lua_pop(L, 1);
-  if (!ran.valid()) {
-    std::string message = s->host->errorText(ran, "");
-    if (!message.starts_with(name)) message = name + ": " + message;
-    throw SceneError(message);
+  if (!chunk_error.empty()) {
+    if (!chunk_error.starts_with(name)) chunk_error = name + ": " + chunk_error;
+    throw SceneError(chunk_error);
   }
   lua_getfield(L, LUA_REGISTRYINDEX, "rigidlab.scene_line");
   const std::string scene_line = sceneStatementLine(source, lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "");
@@ -210,6 +225,7 @@ void Scene::step() { step(impl_->settings.dt); }
 
 void Scene::step(double dt) {
   try {
+    const Budget::Scope forces(impl_->host->budget(), Budget::Kind::Force, /*lazy=*/true);
     impl_->world->step(dt);
   } catch (const ScriptError& e) {  // a Lua force failed; the world is as before the step
     throw SceneError(e.what());
@@ -249,6 +265,7 @@ std::vector<Scene::ExactState> Scene::exact(double t) {
   if (!hasExact()) return states;
   Impl& s = *impl_;
   ++s.host->calls;
+  const Budget::Scope budget(s.host->budget(), Budget::Kind::Hook);
   auto result = s.exact(t);
   if (!result.valid()) throw SceneError(s.host->errorText(result, "Exact"));
   lua_State* L = s.host->L();

@@ -61,7 +61,237 @@ bool hasLocation(const std::string& message) {
   return false;
 }
 
+// --- Caps on C functions the budget hook cannot interrupt (script_host.h, README "Security").
+
+// Index just past a character class "[...]" starting at p[i] == '[' (lstrlib's classEnd).
+size_t skipSet(std::string_view p, size_t i) {
+  ++i;
+  if (i < p.size() && p[i] == '^') ++i;
+  do {
+    if (i >= p.size()) return p.size();
+    if (p[i++] == '%' && i < p.size()) ++i;
+  } while (i < p.size() && p[i] != ']');
+  return i + 1;
+}
+
+// string.find/match/gmatch/gsub: argument 1 the subject, 2 the pattern; upvalue 1 the original.
+template <int Which>  // 0 find, 1 match, 2 gmatch, 3 gsub
+int patternGuard(lua_State* L) {
+  static constexpr const char* kNames[] = {"string.find", "string.match", "string.gmatch", "string.gsub"};
+  size_t n = 0, m = 0;
+  luaL_checklstring(L, 1, &n);
+  const char* p = luaL_checklstring(L, 2, &m);
+  const bool plain = Which == 0 && lua_toboolean(L, 4);
+  const double work = patternWork(std::string_view(p, m), std::string_view(lua_tostring(L, 1), n), plain, Which != 2);
+  if (work > kPatternWorkLimit) {
+    char amount[32];
+    std::snprintf(amount, sizeof amount, "%.2g", work);
+    fail(L, kNames[Which], "pattern " + describe(L, 2) + " is too costly for a subject of " + std::to_string(n) +
+                               " bytes (worst case " + amount + " matching steps, the limit is 5e+07; use a "
+                               "simpler pattern or a shorter string)");
+  }
+  const int nargs = lua_gettop(L);
+  lua_pushvalue(L, lua_upvalueindex(1));
+  lua_insert(L, 1);
+  lua_call(L, nargs, LUA_MULTRET);
+  return lua_gettop(L);
+}
+
+// table.sort(t [, comp]): above kNativeSortLimit elements a missing or C comparator is replaced by
+// a Lua function (upvalue 2: less-than; upvalue 3: a wrapper factory), so the budget hook can stop
+// the sort. Same order: Lua's `<` is what the built-in comparison does.
+int sortGuard(lua_State* L) {
+  luaL_checktype(L, 1, LUA_TTABLE);
+  const lua_Integer n = luaL_len(L, 1);
+  const bool native = lua_isnoneornil(L, 2) || lua_iscfunction(L, 2);
+  if (n > kNativeSortLimit && native) {
+    if (lua_isnoneornil(L, 2)) {
+      lua_settop(L, 1);
+      lua_pushvalue(L, lua_upvalueindex(2));
+    } else {
+      lua_settop(L, 2);
+      lua_pushvalue(L, lua_upvalueindex(3));
+      lua_insert(L, 2);
+      lua_call(L, 1, 1);  // wrap(comp)
+    }
+  }
+  const int nargs = lua_gettop(L);
+  lua_pushvalue(L, lua_upvalueindex(1));
+  lua_insert(L, 1);
+  lua_call(L, nargs, 0);
+  return 0;
+}
+
+// table.move(a1, f, e, t [, a2]) loops in C over e - f + 1 elements, nil or not.
+int moveGuard(lua_State* L) {
+  const lua_Integer f = luaL_checkinteger(L, 2), e = luaL_checkinteger(L, 3);
+  if (e >= f && (f <= 0 ? e >= LUA_MAXINTEGER + f : e - f >= kMoveLimit))
+    fail(L, "table.move", "moves at most " + std::to_string(kMoveLimit) + " elements per call, asked for " +
+                              (f <= 0 && e >= LUA_MAXINTEGER + f ? std::string("more") : std::to_string(e - f + 1)));
+  const int nargs = lua_gettop(L);
+  lua_pushvalue(L, lua_upvalueindex(1));
+  lua_insert(L, 1);
+  lua_call(L, nargs, LUA_MULTRET);
+  return lua_gettop(L);
+}
+
+// string.rep(s, n [, sep]) filled by doubling copies: time linear in the result (which the
+// memory cap bounds), not in n (Lua's loop copies `s` n times, ~1 ns each for 1-byte pieces).
+int repGuard(lua_State* L) {
+  size_t l = 0, lsep = 0;
+  const char* s = luaL_checklstring(L, 1, &l);
+  const lua_Integer n = luaL_checkinteger(L, 2);
+  const char* sep = luaL_optlstring(L, 3, "", &lsep);
+  if (n <= 0 || l + lsep == 0) {
+    lua_pushliteral(L, "");
+    return 1;
+  }
+  const size_t unit = l + lsep;
+  constexpr size_t kMax = static_cast<size_t>(LUA_MAXINTEGER) / 2;
+  if (unit > kMax / static_cast<size_t>(n)) return luaL_error(L, "resulting string too large");
+  const size_t total = unit * static_cast<size_t>(n) - lsep;
+  luaL_Buffer b;
+  char* out = luaL_buffinitsize(L, &b, total);
+  size_t filled = std::min(l, total);
+  std::memcpy(out, s, filled);
+  if (filled < total) {
+    std::memcpy(out + filled, sep, std::min(lsep, total - filled));
+    filled = std::min(unit, total);
+  }
+  while (filled < total) {  // out[0, filled) is whole periods of `unit`
+    const size_t c = std::min(filled, total - filled);
+    std::memcpy(out + filled, out, c);
+    filled += c;
+  }
+  luaL_pushresultsize(&b, total);
+  return 1;
+}
+
+int luaBudgetCheck(lua_State* L) { return Budget::check(L); }
+int luaBudgetExpired(lua_State* L) {
+  lua_pushboolean(L, Budget::expiredOn(L));
+  return 1;
+}
+
 }  // namespace
+
+namespace {
+
+// Lua's character classes (lstrlib.c match_class / singlematch), to measure how long a run of
+// subject characters a repeated pattern item can take.
+bool classMatches(unsigned char c, char cl) {
+  bool res;
+  switch (std::tolower(static_cast<unsigned char>(cl))) {
+    case 'a': res = std::isalpha(c); break;
+    case 'c': res = std::iscntrl(c); break;
+    case 'd': res = std::isdigit(c); break;
+    case 'g': res = std::isgraph(c); break;
+    case 'l': res = std::islower(c); break;
+    case 'p': res = std::ispunct(c); break;
+    case 's': res = std::isspace(c); break;
+    case 'u': res = std::isupper(c); break;
+    case 'w': res = std::isalnum(c); break;
+    case 'x': res = std::isxdigit(c); break;
+    default: return static_cast<unsigned char>(cl) == c;
+  }
+  if (std::isupper(static_cast<unsigned char>(cl))) res = !res;
+  return res;
+}
+
+// Does subject character c match the single-character item p[begin, end)?
+bool itemMatches(unsigned char c, std::string_view p, size_t begin, size_t end) {
+  const char first = p[begin];
+  if (first == '.') return true;
+  if (first == '%') return begin + 1 < end && classMatches(c, p[begin + 1]);
+  if (first != '[') return static_cast<unsigned char>(first) == c;
+  size_t i = begin + 1;
+  bool negate = false;
+  if (i < end && p[i] == '^') negate = true, ++i;
+  const size_t close = end - 1;  // the ']'
+  bool found = false;
+  while (i < close && !found) {
+    if (p[i] == '%' && i + 1 < close) {
+      found = classMatches(c, p[i + 1]);
+      i += 2;
+    } else if (i + 2 < close && p[i + 1] == '-') {
+      found = static_cast<unsigned char>(p[i]) <= c && c <= static_cast<unsigned char>(p[i + 2]);
+      i += 3;
+    } else {
+      found = static_cast<unsigned char>(p[i]) == c;
+      ++i;
+    }
+  }
+  return found != negate;
+}
+
+// Longest run of consecutive subject characters that the item p[begin, end) matches.
+double longestRun(std::string_view subject, std::string_view p, size_t begin, size_t end) {
+  size_t best = 0, run = 0;
+  for (unsigned char c : subject) {
+    run = itemMatches(c, p, begin, end) ? run + 1 : 0;
+    best = std::max(best, run);
+  }
+  return static_cast<double>(best);
+}
+
+}  // namespace
+
+double patternWork(std::string_view p, std::string_view subject, bool plain, bool anchor) {
+  const double n = static_cast<double>(subject.size()), m = static_cast<double>(p.size());
+  if (plain || p.find_first_of("^$*+?.([%-") == std::string_view::npos)
+    return std::max(1.0, n - m + 1) * std::max(1.0, m);  // lmemfind: memcmp at each candidate start
+  size_t i = 0;
+  bool anchored = false;
+  if (anchor && p[0] == '^') {
+    anchored = true;
+    i = 1;
+  }
+  int repeats = 0, optionals = 0;  // items with * + - (or %b, back-references); items with ?
+  double items = 0;
+  double splits = 1;  // Π (longest run the repeated item can take + 1)
+  while (i < p.size()) {
+    const char c = p[i];
+    if (c == '(' || c == ')' || (c == '$' && i + 1 == p.size())) {
+      ++i;
+      continue;
+    }
+    if (c == '%' && i + 1 < p.size()) {
+      const char d = p[i + 1];
+      if (d == 'b') {  // %bxy: scans up to the subject's end at each try
+        ++repeats, ++items, i += 4, splits *= n + 1;
+        continue;
+      }
+      if (d == 'f') {  // %f[set]: one comparison
+        i = (i + 2 < p.size() && p[i + 2] == '[') ? skipSet(p, i + 2) : i + 2;
+        ++items;
+        continue;
+      }
+      if (d >= '0' && d <= '9') {  // back-reference: compares up to a capture's length
+        ++repeats, ++items, i += 2, splits *= n + 1;
+        continue;
+      }
+    }
+    const size_t begin = i;
+    i = c == '%' ? std::min(i + 2, p.size()) : c == '[' ? std::min(skipSet(p, i), p.size()) : i + 1;
+    ++items;
+    if (i < p.size()) {
+      if (p[i] == '*' || p[i] == '+' || p[i] == '-') {
+        splits *= longestRun(subject, p, begin, i) + 1;
+        ++repeats, ++i;
+      } else if (p[i] == '?') {
+        ++optionals, ++i;
+      }
+    }
+  }
+  // Each start position (one if anchored) tries the ways of splitting the subject among the
+  // repeated items: at most C(n + k, k) for k of them, and at most the product of the runs each
+  // can take; each try costs about k + 1 steps, and every optional item doubles the tries.
+  double ways = 1;
+  for (int k = 1; k <= repeats && ways < 1e300; ++k) ways *= (n + k) / k;
+  const double starts = anchored ? 1.0 : n + 1;
+  return starts * std::max(1.0, items) * std::min(ways, splits) * (repeats + 1) *
+         std::pow(2.0, std::min(optionals, 64));
+}
 
 // A non-string error object is described, never converted with its own __tostring (which could
 // loop or fail while we format the error).
@@ -129,10 +359,46 @@ ScriptHost::ScriptHost(const SceneOptions& options, std::filesystem::path scene_
   lua_pop(L, 2);
   // Runs repeat: the generator starts from the same seed every time (reliability.md D2).
   (*lua_)["math"]["randomseed"](20261121);
+  installGuards();
   runPrelude();
+  // From here on every call into the state runs under a budget window (budget.h).
+  budget_ = std::make_unique<Budget>(L, options_.limits.hook_seconds, options_.limits.force_seconds);
 }
 
-ScriptHost::~ScriptHost() { lua_.reset(); }  // closes the state while the allocator's counter lives
+ScriptHost::~ScriptHost() {
+  budget_.reset();
+  lua_.reset();  // closes the state while the allocator's counter lives
+}
+
+void ScriptHost::installGuards() {
+  lua_State* L = lua_->lua_state();
+  static const std::pair<const char*, lua_CFunction> kPatterns[] = {
+      {"find", guarded<patternGuard<0>>}, {"match", guarded<patternGuard<1>>},
+      {"gmatch", guarded<patternGuard<2>>}, {"gsub", guarded<patternGuard<3>>}};
+  lua_getglobal(L, "string");
+  for (const auto& [name, guard] : kPatterns) {
+    lua_getfield(L, -1, name);
+    lua_pushcclosure(L, guard, 1);
+    lua_setfield(L, -2, name);
+  }
+  lua_pushcfunction(L, guarded<repGuard>);
+  lua_setfield(L, -2, "rep");
+  lua_pop(L, 1);
+
+  lua_getglobal(L, "table");
+  lua_getfield(L, -1, "move");
+  lua_pushcclosure(L, guarded<moveGuard>, 1);
+  lua_setfield(L, -2, "move");
+  lua_getfield(L, -1, "sort");
+  static constexpr std::string_view kComparators =
+      "return function(a, b) return a < b end, function(f) return function(a, b) return f(a, b) end end";
+  if (luaL_loadbufferx(L, kComparators.data(), kComparators.size(), "=table.sort", "t") != LUA_OK)
+    throw SceneError("table.sort guard: " + std::string(lua_tostring(L, -1)));
+  lua_call(L, 0, 2);
+  lua_pushcclosure(L, guarded<sortGuard>, 3);
+  lua_setfield(L, -2, "sort");
+  lua_pop(L, 1);
+}
 
 void ScriptHost::runPrelude() {
   sol::state& lua = *lua_;
@@ -143,6 +409,11 @@ void ScriptHost::runPrelude() {
   api["describe"] = sol::stack::pop<sol::object>(L);
   lua_pushcfunction(L, guarded<luaRegisterVec2>);
   api["register_vec2"] = sol::stack::pop<sol::object>(L);
+  lua_pushcfunction(L, luaBudgetCheck);
+  api["budget_check"] = sol::stack::pop<sol::object>(L);
+  lua_pushcfunction(L, luaBudgetExpired);
+  api["budget_expired"] = sol::stack::pop<sol::object>(L);
+  api["source_limit"] = static_cast<lua_Integer>(std::min(options_.limits.source_bytes, kLoadChunkLimit));
   auto result = prelude(api);
   if (!result.valid()) throw SceneError("prelude: " + errorText(result, "prelude"));
 }
@@ -187,7 +458,7 @@ sol::protected_function ScriptHost::protect(const sol::object& function) {
 
 std::string ScriptHost::errorText(const sol::protected_function_result& result, std::string_view context) {
   std::string message;
-  if (result.status() == sol::call_status::memory) {
+  if (result.status() == sol::call_status::memory && !(budget_ && budget_->expired())) {
     message = "not enough memory (the scene's limit is " + std::to_string(options_.limits.memory_bytes >> 20) + " MiB)";
   } else {
     // Read the error from the stack: sol2 refuses to convert a failed result to anything else.
@@ -199,6 +470,8 @@ std::string ScriptHost::errorText(const sol::protected_function_result& result, 
 }
 
 std::string ScriptHost::errorText(std::string message, std::string_view context) {
+  // A spent budget explains whatever error the call ended with (the hook's, or one it caused).
+  if (budget_ && budget_->expired()) message = budget_->raised().empty() ? budget_->message() : budget_->raised();
   if (message == last_api_error_ || context.empty()) return message;  // already "<where><function>: ..."
   if (hasLocation(message)) {
     // Insert the context after "<file>:<line>: ".

@@ -7,21 +7,33 @@
 // - setmetatable refuses __gc; the string metatable is locked (getmetatable("") is false).
 // - print() goes to the host's log; require() is the host's: it reads only `<name>.lua` files from
 //   the scene's directory and the module directories, as text, into the same state.
-// - all memory goes through a counting allocator with a cap (ScriptLimits::memory_bytes).
+// - all memory goes through a counting allocator with a cap (ScriptLimits::memory_bytes; the scene
+//   may lower it with scene.memory_limit).
+// - every call into Lua runs under a wall-clock budget (budget.h); pcall/xpcall are wrapped so they
+//   cannot swallow the budget error. C functions the hook cannot interrupt are capped
+//   (caps.h, installGuards in script_host.cpp): string.find/match/gmatch/gsub refuse a pattern
+//   whose worst-case matching work on the subject exceeds kPatternWorkLimit; table.sort of more
+//   than kNativeSortLimit elements compares through a Lua function (so the budget can stop it);
+//   table.move moves at most kMoveLimit elements per call; string.rep fills by doubling; load()
+//   takes chunks of at most ScriptLimits::source_bytes.
 // Every call from C++ into Lua is a protected call; no Lua error unwinds through C++ frames.
 #pragma once
 
 #define SOL_ALL_SAFETIES_ON 1
 #include <sol/sol.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "budget.h"
+#include "caps.h"
 #include "rigidlab/lua/scene.h"
 
 namespace rigidlab::lua {
+
 
 class ScriptHost {
  public:
@@ -46,6 +58,12 @@ class ScriptHost {
   std::string errorText(const sol::protected_function_result& result, std::string_view context);
   std::string errorText(std::string message, std::string_view context);
 
+  // The scene's wall-clock budget (budget.h).
+  Budget& budget() { return *budget_; }
+  const ScriptLimits& limits() const { return options_.limits; }
+  // Lowers the memory cap (scene.memory_limit); never raises it.
+  void lowerMemoryLimit(size_t bytes) { options_.limits.memory_bytes = std::min(options_.limits.memory_bytes, bytes); }
+
   void log(const std::string& line) const;
   const std::vector<std::filesystem::path>& requiredFiles() const { return required_; }
   size_t memoryUsed() const { return used_; }
@@ -63,6 +81,7 @@ class ScriptHost {
 
  private:
   static void* allocate(void* ud, void* ptr, size_t old_size, size_t new_size);
+  void installGuards();
   void runPrelude();
 
   SceneOptions options_;
@@ -71,6 +90,7 @@ class ScriptHost {
   std::vector<std::filesystem::path> required_;
   std::string last_api_error_;
   std::unique_ptr<sol::state> lua_;
+  std::unique_ptr<Budget> budget_;
 };
 
 // Message handler for protected calls (lua_pcall's msgh): keeps a string error as it is and

@@ -30,10 +30,16 @@ class SceneError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Limits on what one scene's scripts may consume (README "Security").
+// Limits on what one scene's scripts may consume (README "Security"). A scene can lower its own
+// memory cap (`scene = { memory_limit = 64 }`, MiB), never raise it.
 struct ScriptLimits {
   size_t memory_bytes = size_t{256} << 20;  // cap of the scene's Lua allocator
-  size_t source_bytes = size_t{4} << 20;    // largest scene or module file loaded
+  size_t source_bytes = size_t{4} << 20;    // largest scene or module file (and load() chunk)
+  // Wall-clock budgets (engine/lua/src/budget.h). A script still running when its budget is
+  // spent stops with "<file>:<line>: <hook>: script ran longer than its budget of 1 s (infinite
+  // loop?)"; pcall cannot catch it.
+  double hook_seconds = 1.0;   // each call of the main chunk, PopulateWorld, OnStep, Check, OnKey, OnDraw, Exact [s]
+  double force_seconds = 1.0;  // all Lua force evaluations of one Scene::step together [s]
 };
 
 // Scene-level settings from the script's `scene` table, with their defaults. Gravity, integrator
