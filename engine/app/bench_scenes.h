@@ -1,5 +1,8 @@
-// Benchmark scenes for `rigidlab bench`. Each builds a world (in C++, or through a Lua scene when
-// it measures Lua) and says how many steps to time.
+// Benchmark scenes for `rigidlab bench`. The peer scenes (pyramid, stack, rain, massratio, bullet)
+// are built exactly as ../shared/peers/scenes.h describes them for Box2D 2.4 and Chipmunk 7 (same
+// sizes, positions, density 1, friction 0.6, gravity (0, −10), dt 1/60, same step counts), and
+// report the same stability metrics, so one script compares the engines. rigidlab's own scenes
+// measure forces: 1000 bodies on springs (no contacts), built in and written in Lua.
 #pragma once
 
 #include <functional>
@@ -12,16 +15,40 @@
 
 namespace rigidlab::app {
 
+// How a body was built, for the stability metrics.
+struct BenchBody {
+  BodyId id;
+  bool is_static = false;
+  bool circle = false;
+  Vec2 start = Vec2::Zero();
+  double hx = 0.5, hy = 0.5, r = 0.5;
+  bool projectile = false;
+};
+
 // A world to step: either owned directly or inside a Lua scene.
 struct BenchWorld {
   std::unique_ptr<World> world;
   std::unique_ptr<lua::Scene> scene;
+  std::vector<BenchBody> bodies;
+  int top = -1, bottom = -1;  // index into bodies (pyramid/stack top box; massratio boxes; bullet)
+  double wall_x = 0, wall_hx = 0;                     // bullet
+  double cont_min_x = 0, cont_max_x = 0, cont_floor = 0;  // rain container interior
   World& get() { return scene ? scene->world() : *world; }
   long luaCalls() const { return scene ? scene->luaCalls() : 0; }
 };
 
+// Observations made after each step (outside the timed region), as the peers make them.
+struct BenchTracker {
+  double collapse_time = -1, max_box_pen = -1e30, max_ground_pen = -1e30;
+  double vx_after_first_step = NAN;
+  double lean_time = -1;
+  void observe(const std::string& kind, BenchWorld& w, int step, double dt);
+};
+
 struct BenchScene {
-  std::string name;
+  std::string name;         // what the command line names: "pyramid40"
+  std::string kind;         // the peers' scene name: "pyramid"
+  int n = 0;
   std::string description;
   int steps = 600;
   double dt = 1.0 / 60.0;
@@ -29,5 +56,8 @@ struct BenchScene {
 };
 
 const std::vector<BenchScene>& benchScenes();
+
+// The peers' "metrics" object for this scene's final state, as JSON.
+std::string benchMetrics(const BenchScene& scene, BenchWorld& w, const BenchTracker& tracker);
 
 }  // namespace rigidlab::app

@@ -21,6 +21,10 @@ void AllPairsBroadPhase::findPairs(std::span<const Proxy> proxies, std::vector<B
 
 void findPairs(WorldImpl& w) {
   const size_t n = w.bodies.size();
+  if (n < 2) {
+    w.pairs.clear();
+    return;
+  }
   w.proxies.resize(n);
   for (size_t i = 0; i < n; ++i) {
     Proxy& p = w.proxies[i];

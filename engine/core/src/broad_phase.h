@@ -36,4 +36,21 @@ class AllPairsBroadPhase final : public BroadPhase {
   void findPairs(std::span<const Proxy> proxies, std::vector<BodyPair>& pairs) override;
 };
 
+// A uniform grid rebuilt every step, with a list for boxes much larger than a cell
+// (spatial_grid.cpp): O(n) for scenes of similar-sized bodies. The default.
+class GridBroadPhase final : public BroadPhase {
+ public:
+  void findPairs(std::span<const Proxy> proxies, std::vector<BodyPair>& pairs) override;
+
+ private:
+  struct Entry {
+    uint64_t key;    // cell
+    uint32_t proxy;
+  };
+  std::vector<Entry> entries_, entry_scratch_;
+  std::vector<uint32_t> large_, counts_;
+  std::vector<char> is_large_;
+  std::vector<BodyPair> pair_scratch_;
+};
+
 }  // namespace rigidlab

@@ -13,8 +13,10 @@
 // With warm starting (WorldDef::warm_starting) each point starts from the impulses it had in the
 // previous step (matched by feature id); without it, from zero as in the thesis.
 // f is the static coefficient f_s when the tangential slip at the start of the step is below
-// WorldDef::static_friction_speed, else the dynamic f_d (origin.md §10). Normal impulses are solved
-// before friction in each pass, so a single pass already gives the thesis's experiment 1 result.
+// WorldDef::static_friction_speed, else the dynamic f_d (origin.md §10). In each pass friction comes
+// first and the normal impulses last (non-penetration matters most); a contact with two points
+// solves its normal impulses together as a 2×2 problem (solveBlock).
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 
@@ -24,14 +26,7 @@
 namespace rigidlab {
 namespace {
 
-void applyImpulse(Body& a, Body& b, const ContactPoint& cp, const Vec2& impulse) {
-  a.velocity -= a.inv_mass * impulse;
-  a.angular_velocity -= a.inv_inertia * cross(cp.ra, impulse);
-  b.velocity += b.inv_mass * impulse;
-  b.angular_velocity += b.inv_inertia * cross(cp.rb, impulse);
-}
-
-Vec2 relativeVelocity(const Body& a, const Body& b, const ContactPoint& cp) {
+inline Vec2 relativeVelocity(const Body& a, const Body& b, const ContactPoint& cp) {
   return b.velocity + cross(b.angular_velocity, cp.rb) - a.velocity - cross(a.angular_velocity, cp.ra);
 }
 
@@ -101,43 +96,121 @@ void prepare(WorldImpl& w, Contact& c) {
       cp.target_velocity = std::max(0.0, -c.restitution * vn + (1.0 + c.restitution) * accel * cp.overlap_time);
     }
   }
+  // Two points: K = [[k11, k12], [k12, k22]], k_ij = 1/m_A + 1/m_B + (r_Ai×n)(r_Aj×n)/I_A + (r_Bi×n)(r_Bj×n)/I_B.
+  // Solved together when K is well conditioned; two nearly identical points make it singular, and
+  // then the points are solved one by one (Box2D 2.4's rule, condition number ≤ 1000).
+  c.block = false;
+  if (c.count == 2 && c.points[0].normal_mass != 0.0 && c.points[1].normal_mass != 0.0) {
+    const ContactPoint &p1 = c.points[0], &p2 = c.points[1];
+    const double rn1a = cross(p1.ra, n), rn1b = cross(p1.rb, n), rn2a = cross(p2.ra, n), rn2b = cross(p2.rb, n);
+    const double k11 = a.inv_mass + b.inv_mass + a.inv_inertia * rn1a * rn1a + b.inv_inertia * rn1b * rn1b;
+    const double k22 = a.inv_mass + b.inv_mass + a.inv_inertia * rn2a * rn2a + b.inv_inertia * rn2b * rn2b;
+    const double k12 = a.inv_mass + b.inv_mass + a.inv_inertia * rn1a * rn2a + b.inv_inertia * rn1b * rn2b;
+    const double det = k11 * k22 - k12 * k12;
+    if (k11 * k11 < 1000.0 * det) {
+      c.block = true;
+      c.k << k11, k12, k12, k22;
+      c.k_inverse = c.k.inverse();
+    }
+  }
 }
 
-// Applies the impulses carried over from the previous step (narrow_phase.cpp).
-void warmStart(WorldImpl& w, Contact& c) {
-  Body& a = w.bodies[c.a];
-  Body& b = w.bodies[c.b];
-  const Vec2 t = cross(c.normal, 1.0);
+// The iterations run on compact copies in plain doubles (contact.h: SolverBody, SolverContact).
+inline void apply(SolverBody& a, SolverBody& b, const SolverPoint& p, double px, double py) {
+  a.vx -= a.im * px;
+  a.vy -= a.im * py;
+  a.w -= a.ii * (p.rax * py - p.ray * px);
+  b.vx += b.im * px;
+  b.vy += b.im * py;
+  b.w += b.ii * (p.rbx * py - p.rby * px);
+}
+
+// Relative velocity of the point along (dx, dy): ((v_B + ω_B × r_B) − (v_A + ω_A × r_A))·d.
+inline double relative(const SolverBody& a, const SolverBody& b, const SolverPoint& p, double dx, double dy) {
+  const double rvx = b.vx - b.w * p.rby - a.vx + a.w * p.ray;
+  const double rvy = b.vy + b.w * p.rbx - a.vy - a.w * p.rax;
+  return rvx * dx + rvy * dy;
+}
+
+// The normal impulses of a two-point contact as one 2×2 linear complementarity problem
+// (E. Catto, Box2D 2.4 b2ContactSolver, block solver): find x ≥ 0 with v_n = K (x − a) + v_n0 ≥ 0
+// and x_i v_n,i = 0, trying the four cases (both points pushing, one, the other, none).
+inline void solveBlock(SolverBody& a, SolverBody& b, SolverContact& c) {
+  SolverPoint &p1 = c.p[0], &p2 = c.p[1];
+  const double a1 = p1.pn, a2 = p2.pn;
+  // v_n = K x + r
+  const double r1 = relative(a, b, p1, c.nx, c.ny) - p1.target - (c.k11 * a1 + c.k12 * a2);
+  const double r2 = relative(a, b, p2, c.nx, c.ny) - p2.target - (c.k12 * a1 + c.k22 * a2);
+  double x1, x2;
+  x1 = -(c.i11 * r1 + c.i12 * r2);  // both points active
+  x2 = -(c.i12 * r1 + c.i22 * r2);
+  if (!(x1 >= 0.0 && x2 >= 0.0)) {
+    x1 = -r1 / c.k11;  // only the first
+    x2 = 0.0;
+    if (!(x1 >= 0.0 && c.k12 * x1 + r2 >= 0.0)) {
+      x1 = 0.0;  // only the second
+      x2 = -r2 / c.k22;
+      if (!(x2 >= 0.0 && c.k12 * x2 + r1 >= 0.0)) {
+        x1 = x2 = 0.0;  // none: both separating
+        if (!(r1 >= 0.0 && r2 >= 0.0)) return;  // no case fits (round-off, degenerate K)
+      }
+    }
+  }
+  const double d1 = x1 - a1, d2 = x2 - a2;
+  p1.pn = x1;
+  p2.pn = x2;
+  apply(a, b, p1, d1 * c.nx, d1 * c.ny);
+  apply(a, b, p2, d2 * c.nx, d2 * c.ny);
+}
+
+// One pass over a contact: friction first, then the normal impulses, so non-penetration has the
+// last word (Box2D's order); with the accumulated normal impulse of the previous pass bounding
+// friction, a new contact gets its friction from the second pass on.
+inline void solve(std::vector<SolverBody>& bodies, SolverContact& c) {
+  SolverBody& a = bodies[c.a];
+  SolverBody& b = bodies[c.b];
+  const double tx = c.ny, ty = -c.nx;  // t = n × 1
+  for (int i = 0; i < c.count; ++i) {
+    SolverPoint& p = c.p[i];
+    const double limit = p.friction * p.pn;
+    const double total = std::clamp(p.pt - p.tangent_mass * relative(a, b, p, tx, ty), -limit, limit);
+    const double lambda = total - p.pt;
+    p.pt = total;
+    apply(a, b, p, lambda * tx, lambda * ty);
+  }
+  if (c.block) {
+    solveBlock(a, b, c);
+    return;
+  }
+  for (int i = 0; i < c.count; ++i) {
+    SolverPoint& p = c.p[i];
+    const double total = std::max(p.pn - p.normal_mass * (relative(a, b, p, c.nx, c.ny) - p.target), 0.0);
+    const double lambda = total - p.pn;
+    p.pn = total;
+    apply(a, b, p, lambda * c.nx, lambda * c.ny);
+  }
+}
+
+SolverContact compact(const Contact& c) {
+  SolverContact s;
+  s.a = c.a;
+  s.b = c.b;
+  s.count = c.count;
+  s.block = c.block;
+  s.nx = c.normal.x();
+  s.ny = c.normal.y();
+  s.k11 = c.k(0, 0);
+  s.k12 = c.k(0, 1);
+  s.k22 = c.k(1, 1);
+  s.i11 = c.k_inverse(0, 0);
+  s.i12 = c.k_inverse(0, 1);
+  s.i22 = c.k_inverse(1, 1);
   for (int i = 0; i < c.count; ++i) {
     const ContactPoint& cp = c.points[i];
-    applyImpulse(a, b, cp, cp.normal_impulse * c.normal + cp.tangent_impulse * t);
+    s.p[i] = {cp.ra.x(), cp.ra.y(), cp.rb.x(), cp.rb.y(), cp.normal_mass, cp.tangent_mass,
+              cp.target_velocity, cp.friction, cp.normal_impulse, cp.tangent_impulse};
   }
-}
-
-void solve(WorldImpl& w, Contact& c) {
-  Body& a = w.bodies[c.a];
-  Body& b = w.bodies[c.b];
-  const Vec2 n = c.normal;
-  const Vec2 t = cross(n, 1.0);
-  for (int i = 0; i < c.count; ++i) {
-    ContactPoint& cp = c.points[i];
-    const double vn = relativeVelocity(a, b, cp).dot(n);
-    double lambda = -cp.normal_mass * (vn - cp.target_velocity);
-    const double total = std::max(cp.normal_impulse + lambda, 0.0);
-    lambda = total - cp.normal_impulse;
-    cp.normal_impulse = total;
-    applyImpulse(a, b, cp, lambda * n);
-  }
-  for (int i = 0; i < c.count; ++i) {
-    ContactPoint& cp = c.points[i];
-    const double vt = relativeVelocity(a, b, cp).dot(t);
-    double lambda = -cp.tangent_mass * vt;
-    const double limit = cp.friction * cp.normal_impulse;
-    const double total = std::clamp(cp.tangent_impulse + lambda, -limit, limit);
-    lambda = total - cp.tangent_impulse;
-    cp.tangent_impulse = total;
-    applyImpulse(a, b, cp, lambda * t);
-  }
+  return s;
 }
 
 }  // namespace
@@ -152,10 +225,42 @@ void solveContacts(WorldImpl& w) {
     w.solve_start_angular_velocity[i] = w.bodies[i].angular_velocity;
   }
   for (Contact& c : w.contacts) prepare(w, c);
-  if (w.def.warm_starting)
-    for (Contact& c : w.contacts) warmStart(w, c);
+
+  auto& bodies = w.solver_velocities;
+  bodies.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    const Body& b = w.bodies[i];
+    bodies[i] = {b.velocity.x(), b.velocity.y(), b.angular_velocity, b.inv_mass, b.inv_inertia};
+  }
+  auto& constraints = w.solver_contacts;
+  constraints.clear();
+  for (const Contact& c : w.contacts) constraints.push_back(compact(c));
+  if (w.def.warm_starting) {
+    // Start from the impulses carried over from the previous step (narrow_phase.cpp).
+    for (SolverContact& c : constraints) {
+      const double tx = c.ny, ty = -c.nx;
+      for (int i = 0; i < c.count; ++i) {
+        const SolverPoint& p = c.p[i];
+        apply(bodies[c.a], bodies[c.b], p, p.pn * c.nx + p.pt * tx, p.pn * c.ny + p.pt * ty);
+      }
+    }
+  }
   for (int it = 0; it < w.def.iterations; ++it)
-    for (Contact& c : w.contacts) solve(w, c);
+    for (SolverContact& c : constraints) solve(bodies, c);
+
+  for (size_t k = 0; k < constraints.size(); ++k) {
+    Contact& c = w.contacts[k];
+    for (int i = 0; i < c.count; ++i) {
+      c.points[i].normal_impulse = constraints[k].p[i].pn;
+      c.points[i].tangent_impulse = constraints[k].p[i].pt;
+    }
+  }
+  for (size_t i = 0; i < n; ++i) {
+    Body& b = w.bodies[i];
+    if (!w.alive[i] || b.isStatic()) continue;
+    b.velocity = Vec2(bodies[i].vx, bodies[i].vy);
+    b.angular_velocity = bodies[i].w;
+  }
 }
 
 }  // namespace rigidlab

@@ -22,16 +22,20 @@ int next(int i, size_t n) { return (i + 1) % static_cast<int>(n); }
 // Largest separation of `b` from an edge of `a`: for each edge normal of a, the distance of b's
 // deepest vertex from that edge's line. Works in a's frame.
 double findMaxSeparation(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, int& edge) {
-  double best = -std::numeric_limits<double>::infinity();
-  edge = 0;
+  // b's vertices in a's frame through the relative transform: one rotation per vertex.
+  const Rot q{xa.q.c * xb.q.c + xa.q.s * xb.q.s, xa.q.c * xb.q.s - xa.q.s * xb.q.c};  // qaᵀ qb
+  const Vec2 p = xa.q.applyInverse(xb.p - xa.p);
   Vec2 vb[kMaxPolygonVertices];
   const size_t nb = b.vertices.size();
-  for (size_t j = 0; j < nb; ++j) vb[j] = xa.applyInverse(xb.apply(b.vertices[j]));
+  for (size_t j = 0; j < nb; ++j) vb[j] = q.apply(b.vertices[j]) + p;
+  double best = -std::numeric_limits<double>::infinity();
+  edge = 0;
   for (size_t i = 0; i < a.vertices.size(); ++i) {
     const Vec2& n = a.normals[i];
-    const Vec2& v = a.vertices[i];
+    const double offset = n.dot(a.vertices[i]);
     double si = std::numeric_limits<double>::infinity();
-    for (size_t j = 0; j < nb; ++j) si = std::min(si, n.dot(vb[j] - v));
+    for (size_t j = 0; j < nb; ++j) si = std::min(si, n.dot(vb[j]));
+    si -= offset;
     if (si > best) {
       best = si;
       edge = static_cast<int>(i);

@@ -29,11 +29,19 @@ void narrowPhase(WorldImpl& w) {
     c.b = pair.b;
     c.normal = m.normal;
     c.count = m.count;
+    c.local_normal = a.xf.q.applyInverse(m.normal);
     for (int i = 0; i < m.count; ++i) {
-      c.points[i].point = m.points[i].point;
-      c.points[i].separation = m.points[i].separation;
-      c.points[i].id = m.points[i].id;
+      ContactPoint& cp = c.points[i];
+      cp.point = m.points[i].point;
+      cp.separation = m.points[i].separation;
+      cp.id = m.points[i].id;
+      // The two surface points, p ∓ (s/2) n, fixed to their bodies for the position pass.
+      cp.local_a = a.xf.applyInverse(cp.point - 0.5 * cp.separation * m.normal);
+      cp.local_b = b.xf.applyInverse(cp.point + 0.5 * cp.separation * m.normal);
     }
+    // Penetration the position pass leaves alone: WorldDef::allowed_penetration, but at most a tenth
+    // of the smaller body's size, so centimetre bodies are not allowed to sink half their height.
+    c.slop = std::min(w.def.allowed_penetration, 0.1 * std::min(maxExtent(a.shape), maxExtent(b.shape)));
     c.restitution = std::max(a.material.restitution, b.material.restitution);
     c.friction = std::sqrt(a.material.friction * b.material.friction);
     c.static_friction = std::sqrt(a.material.static_friction * b.material.static_friction);

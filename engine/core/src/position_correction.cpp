@@ -20,12 +20,22 @@
 //   bodies then stay exactly put.
 // Off, the stage is the thesis's: linear projection only.
 //
+// Then the penetration left is removed by one of two strategies (WorldDef::position_correction):
 // Linear projection (the thesis's RemovePenetration): move the two bodies apart along the contact
 // normal by the penetration depth d, shared by inverse mass, without rotating them:
 //   Δc_A = −n d (1/m_A) / (1/m_A + 1/m_B),   Δc_B = +n d (1/m_B) / (1/m_A + 1/m_B)
 // Contacts are processed in order; the depth of each is reduced by what earlier contacts already
 // moved its bodies along its normal, so a body is not pushed twice for the same overlap. It is
 // simple and exact for a single contact but imprecise for stacks (bodies creep, origin.md §9).
+//
+// Nonlinear Gauss–Seidel (the default; E. Catto, Box2D 2.4 b2ContactSolver::SolvePositionConstraints):
+// a few passes over the contact points; each recomputes the point's current separation s from its
+// two surface points fixed in the bodies, and applies a position-level impulse that removes a
+// fraction β of the depth beyond the allowed penetration, moving and rotating both bodies:
+//   C = clamp(β (s + slop), −0.2 m, 0),  P = −C / (1/m_A + 1/m_B + (r_A × n)²/I_A + (r_B × n)²/I_B)
+//   c_A −= P n / m_A,  θ_A −= (r_A × P n) / I_A,   c_B += P n / m_B,  θ_B += (r_B × P n) / I_B
+// Because every point sees the corrections of the others, a stack is straightened as a whole
+// instead of contacts pushing against each other; velocities are not touched.
 #include <algorithm>
 
 #include "stages.h"
@@ -49,6 +59,40 @@ void linearProjection(WorldImpl& w) {
     if (depth <= 0.0) continue;
     a.center -= c.normal * (depth * a.inv_mass / inv_sum);
     b.center += c.normal * (depth * b.inv_mass / inv_sum);
+  }
+}
+
+void nonlinearGaussSeidel(WorldImpl& w) {
+  const double beta = w.def.position_correction_rate;
+  constexpr double kMaxCorrection = 0.2;  // m per point and pass, so a deep overlap separates gradually
+  for (int it = 0; it < w.def.position_iterations; ++it) {
+    double deepest = 0.0;
+    for (const Contact& c : w.contacts) {
+      Body& a = w.bodies[c.a];
+      Body& b = w.bodies[c.b];
+      if (a.inv_mass + b.inv_mass == 0.0) continue;
+      for (int i = 0; i < c.count; ++i) {
+        const ContactPoint& cp = c.points[i];
+        const Vec2 n = a.xf.q.apply(c.local_normal);
+        const Vec2 pa = a.xf.apply(cp.local_a), pb = b.xf.apply(cp.local_b);
+        const double separation = (pb - pa).dot(n);
+        deepest = std::min(deepest, separation);
+        const double correction = std::clamp(beta * (separation + c.slop), -kMaxCorrection, 0.0);
+        if (correction == 0.0) continue;
+        const Vec2 p = 0.5 * (pa + pb);
+        const Vec2 ra = p - a.center, rb = p - b.center;
+        const double rna = cross(ra, n), rnb = cross(rb, n);
+        const double k = a.inv_mass + b.inv_mass + a.inv_inertia * rna * rna + b.inv_inertia * rnb * rnb;
+        const Vec2 impulse = (-correction / k) * n;
+        a.center -= a.inv_mass * impulse;
+        a.angle -= a.inv_inertia * cross(ra, impulse);
+        b.center += b.inv_mass * impulse;
+        b.angle += b.inv_inertia * cross(rb, impulse);
+        WorldImpl::syncTransform(a);
+        WorldImpl::syncTransform(b);
+      }
+    }
+    if (deepest >= -3.0 * w.def.allowed_penetration) break;  // close enough: stop early
   }
 }
 
@@ -90,6 +134,12 @@ void correctPositions(WorldImpl& w) {
   switch (w.def.position_correction) {
     case PositionCorrection::LinearProjection:
       linearProjection(w);
+      break;
+    case PositionCorrection::NonlinearGaussSeidel:
+      for (size_t i = 0; i < n; ++i)  // the pass reads the transforms the displacement moved
+        if (w.alive[i] && (w.bodies[i].center != w.correction_start[i] || w.bodies[i].angle != w.correction_start_angle[i]))
+          WorldImpl::syncTransform(w.bodies[i]);
+      nonlinearGaussSeidel(w);
       break;
   }
   for (size_t i = 0; i < n; ++i) {

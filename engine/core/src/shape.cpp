@@ -12,7 +12,15 @@ namespace {
 
 std::string vertexField(int index) { return "vertices[" + std::to_string(index + 1) + "]"; }  // 1-based, as in Lua
 
+double computeExtent(const Shape& shape) {
+  if (shape.type == ShapeType::Circle) return shape.center.norm() + shape.radius;
+  double r = 0.0;
+  for (const Vec2& v : shape.vertices) r = std::max(r, v.norm());
+  return r;
+}
+
 void computeNormals(Shape& s) {
+  s.extent = computeExtent(s);
   const size_t n = s.vertices.size();
   s.normals.resize(n);
   for (size_t i = 0; i < n; ++i) {
@@ -28,6 +36,7 @@ Shape makeCircle(double radius, const Vec2& center) {
   s.type = ShapeType::Circle;
   s.radius = requirePositive("radius", radius);
   s.center = requireFinite("center", center);
+  s.extent = computeExtent(s);
   return s;
 }
 
@@ -194,11 +203,6 @@ bool containsPoint(const Shape& shape, const Transform& xf, const Vec2& p) {
   return true;
 }
 
-double maxExtent(const Shape& shape) {
-  if (shape.type == ShapeType::Circle) return shape.center.norm() + shape.radius;
-  double r = 0.0;
-  for (const Vec2& v : shape.vertices) r = std::max(r, v.norm());
-  return r;
-}
+double maxExtent(const Shape& shape) { return shape.extent > 0.0 ? shape.extent : computeExtent(shape); }
 
 }  // namespace rigidlab

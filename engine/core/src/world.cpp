@@ -80,6 +80,7 @@ void World::step(double dt) {
     if (!w.alive[i]) continue;
     ++s.bodies;
     if (!w.bodies[i].isStatic()) ++s.dynamic_bodies;
+    if (!w.bodies[i].isStatic()) ++s.awake_bodies;
   }
   for (const ForceEntry& f : w.forces) s.forces += f.alive ? 1 : 0;
 }
@@ -103,13 +104,19 @@ void expireForces(WorldImpl& w) {
 // Construction and settings
 
 World::World(const WorldDef& def) : impl_(std::make_unique<WorldImpl>()) {
-  impl_->broad_phase = std::make_unique<AllPairsBroadPhase>();
+  setBroadPhase(def.broad_phase);
   setGravity(def.gravity);
   setIntegrator(def.integrator);
   setIterations(def.iterations);
   setWarmStarting(def.warm_starting);
   setContactDisplacement(def.contact_displacement);
   setPositionCorrection(def.position_correction);
+  setPositionIterations(def.position_iterations);
+  impl_->def.allowed_penetration = requireNonNegative("allowed_penetration", def.allowed_penetration);
+  if (!(def.position_correction_rate > 0.0 && def.position_correction_rate <= 1.0))
+    throw InputError("position_correction_rate",
+                     "position_correction_rate must be in (0, 1], got " + formatNumber(def.position_correction_rate));
+  impl_->def.position_correction_rate = def.position_correction_rate;
   setRestitutionThreshold(def.restitution_threshold);
   setStaticFrictionSpeed(def.static_friction_speed);
   setContactMargin(def.contact_margin);
@@ -133,9 +140,24 @@ void World::setIterations(int iterations) {
 void World::setWarmStarting(bool on) { impl_->def.warm_starting = on; }
 void World::setContactDisplacement(bool on) { impl_->def.contact_displacement = on; }
 void World::setPositionCorrection(PositionCorrection pc) { impl_->def.position_correction = pc; }
+void World::setPositionIterations(int iterations) {
+  if (iterations < 1 || iterations > 1000)
+    throw InputError("position_iterations",
+                     "position_iterations must be between 1 and 1000, got " + std::to_string(iterations));
+  impl_->def.position_iterations = iterations;
+}
 void World::setRestitutionThreshold(double speed) {
   impl_->def.restitution_threshold = requireNonNegative("restitution_threshold", speed);
 }
+void World::setBroadPhase(BroadPhaseKind kind) {
+  impl_->def.broad_phase = kind;
+  if (kind == BroadPhaseKind::AllPairs) {
+    impl_->broad_phase = std::make_unique<AllPairsBroadPhase>();
+  } else {
+    impl_->broad_phase = std::make_unique<GridBroadPhase>();
+  }
+}
+
 void World::setContactMargin(double distance) {
   impl_->def.contact_margin = requireNonNegative("contact_margin", distance);
 }
@@ -165,12 +187,14 @@ std::string integratorNames() { return "euler, semi_implicit_euler, rk4, implici
 std::string_view positionCorrectionName(PositionCorrection pc) {
   switch (pc) {
     case PositionCorrection::LinearProjection: return "linear_projection";
+    case PositionCorrection::NonlinearGaussSeidel: return "nonlinear_gauss_seidel";
   }
   return "";
 }
 
 std::optional<PositionCorrection> parsePositionCorrection(std::string_view name) {
-  if (name == "linear_projection") return PositionCorrection::LinearProjection;
+  for (PositionCorrection pc : {PositionCorrection::LinearProjection, PositionCorrection::NonlinearGaussSeidel})
+    if (positionCorrectionName(pc) == name) return pc;
   return std::nullopt;
 }
 

@@ -81,6 +81,9 @@ struct WorldImpl {
     std::vector<double> a0, w0, da, dw;
   } rk4;
 
+  // The contact solver's compact working copies (contact_solver.cpp).
+  std::vector<SolverBody> solver_velocities;
+  std::vector<SolverContact> solver_contacts;
   std::vector<Vec2> solve_start_velocity;  // per slot: velocity before the contact solve
   std::vector<double> solve_start_angular_velocity;
   std::vector<double> overlap_time;       // per slot: Σ P τ over its contact points (position_correction)

@@ -28,6 +28,7 @@ struct Shape {
   Vec2 center = Vec2::Zero();        // circle centre in body coordinates [m]
   std::vector<Vec2> vertices;        // polygon corners, counter-clockwise, body coordinates [m]
   std::vector<Vec2> normals;         // outward unit normal of edge i = vertices[i] → vertices[i+1]
+  double extent = 0.0;               // largest distance from the body origin to the shape [m] (cached)
 };
 
 // Mass properties of a shape of uniform density.

@@ -37,10 +37,20 @@ std::string integratorNames();  // "euler, semi_implicit_euler, rk4, implicit_eu
 
 // How penetration left after the velocity solve is removed (origin.md §9).
 enum class PositionCorrection {
-  LinearProjection,  // "linear_projection": move both bodies apart along the normal (the original)
+  LinearProjection,      // "linear_projection": move both bodies apart along the normal by the
+                         //   whole depth, without rotating them (the thesis's method)
+  NonlinearGaussSeidel,  // "nonlinear_gauss_seidel": iterate over the contact points, moving and
+                         //   rotating the bodies to remove a fraction of each point's current depth
+                         //   (Box2D 2.4's position solver); steadier stacks. The default.
 };
 std::string_view positionCorrectionName(PositionCorrection);
 std::optional<PositionCorrection> parsePositionCorrection(std::string_view name);
+
+// How candidate pairs are found (broad phase). Both report the same pairs in the same order.
+enum class BroadPhaseKind {
+  Grid,      // "grid": a uniform grid rebuilt each step, O(n); the default
+  AllPairs,  // "all_pairs": the thesis's test of every pair, O(n²); fine for a few dozen bodies
+};
 
 struct WorldDef {
   Vec2 gravity = Vec2(0.0, -9.80665);          // [m/s²], origin.md §1
@@ -49,11 +59,16 @@ struct WorldDef {
   // Start each persisting contact point from last step's impulses (matched by feature id). Off
   // reproduces the thesis's solver, which starts every step from zero.
   bool warm_starting = true;
-  PositionCorrection position_correction = PositionCorrection::LinearProjection;
+  PositionCorrection position_correction = PositionCorrection::NonlinearGaussSeidel;
+  int position_iterations = 3;             // passes of the nonlinear Gauss–Seidel correction, ≥ 1
+  double allowed_penetration = 0.005;      // [m] ≥ 0: overlap the correction leaves (keeps contacts
+                                           //   persistent); capped at a tenth of the smaller body's size
+  double position_correction_rate = 0.2;   // fraction of the remaining depth removed per pass, (0, 1]
   // Move each body by the displacement its contact impulses would have caused during the step
   // (position_correction.cpp), so friction and resting contacts hold positions, not only
   // velocities. Off reproduces the thesis, where held bodies creep by their gravity travel.
   bool contact_displacement = true;
+  BroadPhaseKind broad_phase = BroadPhaseKind::Grid;
   // Speculative contact distance: pairs closer than this get contact points before they touch, and
   // the solver lets them close at most the gap in the next step (v_n ≥ −gap / h). Keeps resting
   // contacts from flickering on and off at zero separation. [m] ≥ 0
@@ -94,7 +109,7 @@ struct StepStats {
   double integrate_ms = 0, broad_phase_ms = 0, narrow_phase_ms = 0, solve_ms = 0, correct_ms = 0,
          finish_ms = 0;
   double forces_ms = 0;     // part of integrate_ms spent in Force::evaluate
-  int bodies = 0, dynamic_bodies = 0, forces = 0;
+  int bodies = 0, dynamic_bodies = 0, awake_bodies = 0, forces = 0;
   int pairs = 0, contacts = 0, contact_points = 0;
   long force_evaluations = 0;  // calls of Force::evaluate in this step
   double total_ms() const { return integrate_ms + broad_phase_ms + narrow_phase_ms + solve_ms + correct_ms + finish_ms; }
@@ -126,9 +141,11 @@ class World {
   void setWarmStarting(bool on);
   void setContactDisplacement(bool on);
   void setPositionCorrection(PositionCorrection pc);
+  void setPositionIterations(int iterations);
   void setRestitutionThreshold(double speed);
   void setStaticFrictionSpeed(double speed);
   void setContactMargin(double distance);
+  void setBroadPhase(BroadPhaseKind kind);
 
   // --- bodies
   BodyId createBody(const BodyDef& def);  // InputError names the bad field and value

@@ -1,0 +1,29 @@
+// A small JSON reader for `rigidlab bench --compare`, which reads the peer programs' output lines.
+// Objects, arrays, strings (no \u escapes beyond ASCII), numbers, booleans, null.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace rigidlab::app {
+
+struct JsonValue {
+  enum class Type { Null, Bool, Number, String, Array, Object } type = Type::Null;
+  bool boolean = false;
+  double number = 0.0;
+  std::string string;
+  std::vector<JsonValue> array;
+  std::map<std::string, JsonValue> object;
+
+  const JsonValue* get(const std::string& key) const;  // nullptr if absent or not an object
+  std::optional<double> num(const std::string& key) const;
+  std::optional<std::string> str(const std::string& key) const;
+};
+
+// nullopt if `text` is not one valid JSON value.
+std::optional<JsonValue> parseJson(const std::string& text);
+
+}  // namespace rigidlab::app
