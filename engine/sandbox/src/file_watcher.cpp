@@ -134,6 +134,7 @@ void FileWatcher::readInotify(Clock::time_point now) {
       if (ev->mask & IN_Q_OVERFLOW) {  // events were lost: compare everything
         pending_ = true;
         last_event_ = now;
+        ++events_;
         continue;
       }
       auto dir = dirs_.end();
@@ -156,6 +157,7 @@ void FileWatcher::readInotify(Clock::time_point now) {
       if (ev->mask & (IN_CLOSE_WRITE | IN_MOVED_TO | IN_DELETE | IN_MOVED_FROM)) file->second.writing = false;
       pending_ = true;
       last_event_ = now;
+      ++events_;
     }
   }
 }
@@ -186,14 +188,19 @@ bool FileWatcher::pollStats(Clock::time_point) {
 }
 
 bool FileWatcher::compareContents(Clock::time_point now) {
+  const long events_before = events_;
   std::map<fs::path, std::optional<uint64_t>> now_hash;
   bool missing = false;
   for (const auto& [p, s] : files_) {
     now_hash[p] = hashFile(p);
-    missing = missing || !now_hash[p];
+    // An empty file is a truncation whose write has not come yet (an in-place save from a slow
+    // process, measured under load: open(O_TRUNC) … 30+ ms … write). No scene is empty.
+    std::error_code ec;
+    missing = missing || !now_hash[p] || fs::file_size(p, ec) == 0;
   }
   if (missing) {
-    // Between a delete and a create, or a rename away and back: give the editor a moment.
+    // Between a delete and a create, a rename away and back, a truncation and its write: give the
+    // editor a moment.
     if (!missing_since_) missing_since_ = now;
     if (now - *missing_since_ < options_.missing_grace) {
       last_event_ = now;  // look again after another settle period
@@ -201,6 +208,12 @@ bool FileWatcher::compareContents(Clock::time_point now) {
     }
   }
   missing_since_.reset();
+  // A write that began while we were reading (the next save of a burst truncating the file) makes
+  // what we read suspect: settle again rather than report a half-written file.
+  if (inotify_fd_ >= 0) {
+    readInotify(now);
+    if (events_ != events_before) return false;
+  }
   changed_.clear();
   for (auto& [p, s] : files_) {
     if (now_hash[p] != s.baseline) changed_.push_back(p);
@@ -209,6 +222,11 @@ bool FileWatcher::compareContents(Clock::time_point now) {
   }
   pending_ = false;
   return !changed_.empty();
+}
+
+bool FileWatcher::settling(Clock::time_point now) {
+  if (inotify_fd_ >= 0) readInotify(now);
+  return pending_;
 }
 
 bool FileWatcher::poll(Clock::time_point now) {

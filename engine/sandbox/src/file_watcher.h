@@ -11,7 +11,8 @@
 //   - a burst of events is settled for `settle` after the last one, then the files' contents are
 //     hashed and compared with what was last loaded: a `touch` or a rewrite with the same text
 //     reloads nothing, and N saves in quick succession reload once;
-//   - a file that is missing (between a delete and a create) is waited for up to `missing_grace`.
+//   - a file that is missing (between a delete and a create) or empty (truncated, not yet written)
+//     is waited for up to `missing_grace`, then reported;
 // Without inotify (RIGIDLAB_WATCH=poll, or inotify_init failing, or a directory whose watch was lost
 // until it can be re-armed) the files are polled: size and mtime every `poll_interval`, content
 // hashed when they change, reported when two polls agree.
@@ -55,6 +56,11 @@ class FileWatcher {
   // writes have settled; the new content becomes the baseline, so each change is reported once.
   bool poll(Clock::time_point now = Clock::now());
 
+  // Reads pending file events without reporting: true while writes to the watched files have not
+  // settled (a change is coming). Lets the caller hold back a failed load of a file that is being
+  // rewritten at that moment.
+  bool settling(Clock::time_point now = Clock::now());
+
   bool usingInotify() const { return inotify_fd_ >= 0; }
   const std::vector<std::filesystem::path>& files() const { return order_; }
   // The files whose content changed in the last report.
@@ -86,6 +92,7 @@ class FileWatcher {
   std::vector<std::filesystem::path> order_, changed_;
   std::map<std::filesystem::path, DirWatch> dirs_;
   bool pending_ = false;
+  long events_ = 0;  // events on watched files (or overflows) read so far
   Clock::time_point last_event_{};
   Clock::time_point last_poll_{};
   std::optional<Clock::time_point> missing_since_;

@@ -20,6 +20,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
+#include <string>
 #include <thread>
 
 #include "assets.h"
@@ -52,9 +54,23 @@ bool displayAvailable() {
   return true;
 }
 
-int msaaSamples() {
-  const char* env = std::getenv("RIGIDLAB_MSAA");  // 0 turns multisampling off (faster software GL)
-  return env ? std::max(0, std::atoi(env)) : 4;
+// Multisampling: 4× by default, RIGIDLAB_MSAA=N to choose. On a software renderer (Mesa llvmpipe,
+// as under Xvfb or in a VM without a GPU) it is off unless asked for: measured under Xvfb on the
+// playground scene, 4× costs 27 ms of CPU per frame against 7 ms without, which is the difference
+// between 36 and 60 frames per second and doubles the hot-reload latency.
+std::optional<int> requestedSamples() {
+  const char* env = std::getenv("RIGIDLAB_MSAA");
+  if (!env || !*env) return std::nullopt;
+  return std::max(0, std::atoi(env));
+}
+
+bool softwareRenderer() {
+  const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  if (!renderer) return false;
+  const std::string name = renderer;
+  for (const char* soft : {"llvmpipe", "softpipe", "swrast", "SWR"})
+    if (name.find(soft) != std::string::npos) return true;
+  return false;
 }
 
 struct Window {
@@ -67,7 +83,7 @@ struct Window {
   }
 };
 
-// A window with an OpenGL 3.3 core context, with 4× multisampling if the system offers it.
+// A window with an OpenGL 3.3 core context, multisampled if the system offers it (see above).
 bool openWindow(Window& w, std::string& error) {
   SDL_GL_SetAttribute(SDL_GL_CONTEXT_MAJOR_VERSION, 3);
   SDL_GL_SetAttribute(SDL_GL_CONTEXT_MINOR_VERSION, 3);
@@ -76,11 +92,16 @@ bool openWindow(Window& w, std::string& error) {
   SDL_GL_SetAttribute(SDL_GL_DEPTH_SIZE, 0);
   SDL_GL_SetAttribute(SDL_GL_STENCIL_SIZE, 8);
   const auto flags = static_cast<SDL_WindowFlags>(SDL_WINDOW_OPENGL | SDL_WINDOW_RESIZABLE);
-  for (const int samples : {msaaSamples(), 0}) {
+  const std::optional<int> requested = requestedSamples();
+  for (const int samples : {requested.value_or(4), 0}) {
     SDL_GL_SetAttribute(SDL_GL_MULTISAMPLEBUFFERS, samples > 0 ? 1 : 0);
     SDL_GL_SetAttribute(SDL_GL_MULTISAMPLESAMPLES, samples);
     w.window = SDL_CreateWindow("rigidlab", SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED, 1280, 720, flags);
     if (w.window) w.gl = SDL_GL_CreateContext(w.window);
+    if (w.gl && samples > 0 && !requested && softwareRenderer()) {
+      SDL_GL_DeleteContext(w.gl);  // software GL: try again without multisampling
+      w.gl = nullptr;
+    }
     if (w.gl) return true;
     error = SDL_GetError();
     if (w.window) SDL_DestroyWindow(w.window);

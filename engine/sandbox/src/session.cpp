@@ -128,12 +128,23 @@ void updateHotReload(Session& s, Session::Clock::time_point now) {
   bool started = false;
   if (!s.file.empty() && s.watcher.poll(now)) {
     requestLoad(s, s.file, LoadPurpose::Reload);
+    s.deferred_failure.reset();  // superseded by the newer content
     started = true;
   }
   // A typical scene loads in about a millisecond: wait a little for it (bounded, so a slow or
   // stuck PopulateWorld costs this frame at most 8 ms) instead of a whole frame.
-  if (auto r = s.loader.poll(started ? std::chrono::milliseconds(8) : std::chrono::milliseconds(0)))
-    adoptScene(s, std::move(*r));
+  if (auto r = s.loader.poll(started ? std::chrono::milliseconds(8) : std::chrono::milliseconds(0))) {
+    if (!r->scene && r->purpose == LoadPurpose::Reload && s.watcher.settling(now)) {
+      s.deferred_failure = std::move(*r);  // the file is being written again: wait and see
+    } else {
+      adoptScene(s, std::move(*r));
+    }
+  }
+  if (s.deferred_failure && !s.loader.busy() && !s.watcher.settling(now)) {
+    LoadResult failure = std::move(*s.deferred_failure);
+    s.deferred_failure.reset();
+    adoptScene(s, std::move(failure));
+  }
 }
 
 namespace {

@@ -108,6 +108,9 @@ struct Session {
   // --- hot reload and errors
   FileWatcher watcher;
   SceneLoader loader;
+  // A reload that failed while its file was being rewritten again: probably a half-written file.
+  // Shown only if the writes settle without bringing a new load (then it was a real error).
+  std::optional<LoadResult> deferred_failure;
   std::string load_error;  // the last load failed: shown until the next good load
   std::string run_error;   // a script failed while running: the simulation paused
   std::string draw_error;  // OnDraw failed: it is not called again until the scene is reloaded
