@@ -173,6 +173,7 @@ inline void solve(std::vector<SolverBody>& bodies, SolverContact& c) {
   for (int i = 0; i < c.count; ++i) {
     SolverPoint& p = c.p[i];
     const double limit = p.friction * p.pn;
+    if (limit == 0.0 && p.pt == 0.0) continue;  // no load, no friction: nothing to do (side contacts)
     const double total = std::clamp(p.pt - p.tangent_mass * relative(a, b, p, tx, ty), -limit, limit);
     const double lambda = total - p.pt;
     p.pt = total;

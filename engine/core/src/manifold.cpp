@@ -18,27 +18,26 @@ uint32_t polygonId(int ref_edge, int inc_edge, int slot, bool flip) {
 }
 
 int next(int i, size_t n) { return (i + 1) % static_cast<int>(n); }
+int next(int i, int n) { return i + 1 == n ? 0 : i + 1; }
 
 // Largest separation of `b` from an edge of `a`: for each edge normal of a, the distance of b's
 // deepest vertex from that edge's line. Works in a's frame.
-double findMaxSeparation(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, int& edge) {
-  // b's vertices in a's frame through the relative transform: one rotation per vertex.
-  const Rot q{xa.q.c * xb.q.c + xa.q.s * xb.q.s, xa.q.c * xb.q.s - xa.q.s * xb.q.c};  // qaᵀ qb
-  const Vec2 p = xa.q.applyInverse(xb.p - xa.p);
-  Vec2 vb[kMaxPolygonVertices];
-  const size_t nb = b.vertices.size();
-  for (size_t j = 0; j < nb; ++j) vb[j] = q.apply(b.vertices[j]) + p;
+// Largest separation of `b` from an edge of `a`: for each edge normal of a, the distance of b's
+// deepest vertex from that edge's line. Stops at the first axis that separates the shapes by more
+// than `margin` (no contact then).
+double findMaxSeparation(const WorldPolygon& a, const WorldPolygon& b, int& edge, double margin) {
   double best = -std::numeric_limits<double>::infinity();
   edge = 0;
-  for (size_t i = 0; i < a.vertices.size(); ++i) {
+  for (int i = 0; i < a.count; ++i) {
     const Vec2& n = a.normals[i];
     const double offset = n.dot(a.vertices[i]);
     double si = std::numeric_limits<double>::infinity();
-    for (size_t j = 0; j < nb; ++j) si = std::min(si, n.dot(vb[j]));
+    for (int j = 0; j < b.count; ++j) si = std::min(si, n.dot(b.vertices[j]));
     si -= offset;
     if (si > best) {
       best = si;
-      edge = static_cast<int>(i);
+      edge = i;
+      if (best > margin) break;
     }
   }
   return best;
@@ -118,41 +117,53 @@ Manifold collidePolygonAndCircle(const Shape& a, const Transform& xa, const Shap
 }
 
 Manifold collidePolygons(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double margin) {
+  Vec2 va[kMaxPolygonVertices], na[kMaxPolygonVertices], vb[kMaxPolygonVertices], nb[kMaxPolygonVertices];
+  for (size_t i = 0; i < a.vertices.size(); ++i) {
+    va[i] = xa.apply(a.vertices[i]);
+    na[i] = xa.q.apply(a.normals[i]);
+  }
+  for (size_t i = 0; i < b.vertices.size(); ++i) {
+    vb[i] = xb.apply(b.vertices[i]);
+    nb[i] = xb.q.apply(b.normals[i]);
+  }
+  return collidePolygons(WorldPolygon{va, na, static_cast<int>(a.vertices.size()), maxExtent(a)},
+                         WorldPolygon{vb, nb, static_cast<int>(b.vertices.size()), maxExtent(b)}, margin);
+}
+
+Manifold collidePolygons(const WorldPolygon& a, const WorldPolygon& b, double margin) {
   Manifold m;
   int edge_a = 0, edge_b = 0;
-  const double sep_a = findMaxSeparation(a, xa, b, xb, edge_a);
+  const double sep_a = findMaxSeparation(a, b, edge_a, margin);
   if (sep_a > margin) return m;
-  const double sep_b = findMaxSeparation(b, xb, a, xa, edge_b);
+  const double sep_b = findMaxSeparation(b, a, edge_b, margin);
   if (sep_b > margin) return m;
 
   // Reference face: the axis of least penetration, preferring A unless B's is clearly better, so
   // the choice does not flip between steps on nearly equal values (a flip would change feature ids).
-  const double tol = 5e-4 * std::min(maxExtent(a), maxExtent(b));
+  const double tol = 5e-4 * std::min(a.extent, b.extent);
   const bool flip = sep_b > sep_a + tol;
-  const Shape& ref = flip ? b : a;
-  const Shape& inc = flip ? a : b;
-  const Transform& xr = flip ? xb : xa;
-  const Transform& xi = flip ? xa : xb;
+  const WorldPolygon& ref = flip ? b : a;
+  const WorldPolygon& inc = flip ? a : b;
   const int ref_edge = flip ? edge_b : edge_a;
 
   // Incident edge: the edge of `inc` whose normal is most anti-parallel to the reference normal.
-  const Vec2 ref_normal_in_inc = xi.q.applyInverse(xr.q.apply(ref.normals[ref_edge]));
+  const Vec2& ref_normal = ref.normals[ref_edge];
   int inc_edge = 0;
   double min_dot = std::numeric_limits<double>::infinity();
-  for (size_t i = 0; i < inc.normals.size(); ++i) {
-    const double d = ref_normal_in_inc.dot(inc.normals[i]);
+  for (int i = 0; i < inc.count; ++i) {
+    const double d = ref_normal.dot(inc.normals[i]);
     if (d < min_dot) {
       min_dot = d;
-      inc_edge = static_cast<int>(i);
+      inc_edge = i;
     }
   }
 
-  // Clip the incident edge to the side planes of the reference edge (world coordinates).
-  const Vec2 r1 = xr.apply(ref.vertices[ref_edge]);
-  const Vec2 r2 = xr.apply(ref.vertices[next(ref_edge, ref.vertices.size())]);
+  // Clip the incident edge to the side planes of the reference edge.
+  const Vec2& r1 = ref.vertices[ref_edge];
+  const Vec2& r2 = ref.vertices[next(ref_edge, ref.count)];
   const Vec2 tangent = (r2 - r1).normalized();
   const Vec2 normal(tangent.y(), -tangent.x());  // outward for a counter-clockwise polygon
-  Vec2 p[2] = {xi.apply(inc.vertices[inc_edge]), xi.apply(inc.vertices[next(inc_edge, inc.vertices.size())])};
+  Vec2 p[2] = {inc.vertices[inc_edge], inc.vertices[next(inc_edge, inc.count)]};
   const auto clip = [&](const Vec2& plane_normal, double offset) {
     const double d0 = plane_normal.dot(p[0]) - offset, d1 = plane_normal.dot(p[1]) - offset;
     if (d0 > 0.0 && d1 > 0.0) return false;

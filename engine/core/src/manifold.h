@@ -29,10 +29,20 @@ struct Manifold {
   int count = 0;
 };
 
+// A polygon already placed in the world: its vertices and outward normals in world coordinates.
+// The step transforms each body's polygon once (broad_phase.cpp) and every pair it is in reads it.
+struct WorldPolygon {
+  const Vec2* vertices;
+  const Vec2* normals;
+  int count;
+  double extent;  // Shape::extent
+};
+
 // Points are reported when their separation is ≤ margin (margin 0: touching or overlapping).
 Manifold collideCircles(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double margin);
 Manifold collidePolygonAndCircle(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double margin);
 Manifold collidePolygons(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double margin);
+Manifold collidePolygons(const WorldPolygon& a, const WorldPolygon& b, double margin);
 // Dispatches on the shape types; a circle–polygon pair is solved as polygon–circle and flipped.
 Manifold collideShapes(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double margin);
 

@@ -22,9 +22,15 @@ void narrowPhase(WorldImpl& w) {
   for (const BodyPair& pair : w.pairs) {
     const Body& a = w.bodies[pair.a];
     const Body& b = w.bodies[pair.b];
-    const Manifold m = collideShapes(a.shape, a.xf, b.shape, b.xf, w.def.contact_margin);
+    const auto placed = [&](uint32_t slot, const Body& body) {
+      return WorldPolygon{&w.world_vertices[w.polygon_offset[slot]], &w.world_normals[w.polygon_offset[slot]],
+                          static_cast<int>(body.shape.vertices.size()), body.shape.extent};
+    };
+    const Manifold m = a.shape.type == ShapeType::Polygon && b.shape.type == ShapeType::Polygon
+                           ? collidePolygons(placed(pair.a, a), placed(pair.b, b), w.def.contact_margin)
+                           : collideShapes(a.shape, a.xf, b.shape, b.xf, w.def.contact_margin);
     if (m.count == 0) continue;
-    Contact c;
+    Contact& c = w.contacts.emplace_back();  // reused storage: no allocation in steady state
     c.a = pair.a;
     c.b = pair.b;
     c.normal = m.normal;
@@ -59,7 +65,6 @@ void narrowPhase(WorldImpl& w) {
             }
           }
     }
-    w.contacts.push_back(c);
   }
 }
 

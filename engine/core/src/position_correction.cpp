@@ -37,6 +37,7 @@
 // Because every point sees the corrections of the others, a stack is straightened as a whole
 // instead of contacts pushing against each other; velocities are not touched.
 #include <algorithm>
+#include <cmath>
 
 #include "stages.h"
 #include "world_impl.h"
@@ -62,6 +63,19 @@ void linearProjection(WorldImpl& w) {
   }
 }
 
+// Moves a body's transform along with a correction of its centre and a small rotation dθ: the
+// rotation is advanced by q ← normalize(q + dθ perp(q)) instead of a sine and cosine per point
+// (the transforms are recomputed exactly from the angles at the end of the stage).
+void rotate(Body& b, double d_angle) {
+  if (d_angle != 0.0) {
+    b.angle += d_angle;
+    const double c = b.xf.q.c - d_angle * b.xf.q.s, s = b.xf.q.s + d_angle * b.xf.q.c;
+    const double inv = 1.0 / std::sqrt(c * c + s * s);
+    b.xf.q = {c * inv, s * inv};
+  }
+  b.xf.p = b.center - b.xf.q.apply(b.local_center);
+}
+
 void nonlinearGaussSeidel(WorldImpl& w) {
   const double beta = w.def.position_correction_rate;
   constexpr double kMaxCorrection = 0.2;  // m per point and pass, so a deep overlap separates gradually
@@ -85,11 +99,9 @@ void nonlinearGaussSeidel(WorldImpl& w) {
         const double k = a.inv_mass + b.inv_mass + a.inv_inertia * rna * rna + b.inv_inertia * rnb * rnb;
         const Vec2 impulse = (-correction / k) * n;
         a.center -= a.inv_mass * impulse;
-        a.angle -= a.inv_inertia * cross(ra, impulse);
         b.center += b.inv_mass * impulse;
-        b.angle += b.inv_inertia * cross(rb, impulse);
-        WorldImpl::syncTransform(a);
-        WorldImpl::syncTransform(b);
+        rotate(a, -a.inv_inertia * cross(ra, impulse));
+        rotate(b, b.inv_inertia * cross(rb, impulse));
       }
     }
     if (deepest >= -3.0 * w.def.allowed_penetration) break;  // close enough: stop early
