@@ -1,14 +1,211 @@
-// rigidlab stability: placeholder until the stability lab lands (issue 5). It says so and fails.
-#include <cstdio>
+// rigidlab stability: the stiff and extreme cases (accuracy.md §4, issue 5), each with a pass/fail
+// rule and its figures, written as stability.json and stability.md. The cases are in
+// stability_cases.cpp and stability_contact_cases.cpp.
+#include <unistd.h>
 
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "accuracy_report.h"
 #include "cli.h"
 #include "commands.h"
+#include "report.h"
+#include "stability_cases.h"
 
 namespace rigidlab::app {
+namespace {
 
-int stabilityCommand(const std::vector<std::string>&) {
-  std::fprintf(stderr, "rigidlab stability: not built yet in this version\n");
-  return kExitSceneError;
+using namespace stability;
+
+std::string help() {
+  std::string h = R"(usage: rigidlab stability [--out DIR] [--cases A,B,...] [--quick]
+
+Runs the stiff and extreme cases (accuracy.md section 4), each with a pass/fail rule, and writes
+DIR/stability.json and DIR/stability.md (default DIR: stability-report) with every case's figures
+and PASS/FAIL. A line per case on standard output.
+
+  --cases LIST  run only these cases (comma-separated)
+  --quick       the short versions (fewer steps; the same rules), as ctest runs them
+
+Exit status: 0 if every case run passes, 1 if one fails, 2 for a usage error.
+
+cases:
+)";
+  for (const Case& c : cases()) {
+    char line[160];
+    std::snprintf(line, sizeof line, "  %-24s %s\n", c.name.c_str(), c.summary.c_str());
+    h += line;
+  }
+  return h;
+}
+
+std::string mdCell(std::string s) {
+  std::string out;
+  for (char c : s) out += c == '|' ? std::string("\\|") : std::string(1, c);
+  return out;
+}
+
+void writeJson(const std::filesystem::path& file, const std::vector<CaseResult>& results, const accuracy::BuildInfo& b,
+               bool quick) {
+  std::ofstream out(file);
+  if (!out) throw std::runtime_error(file.string() + ": cannot write");
+  out << "{\n  \"engine_version\": " << jsonString(b.engine_version) << ",\n  \"git_hash\": " << jsonString(b.git_hash)
+      << ",\n  \"build\": " << jsonString(b.build) << ",\n  \"cpu\": " << jsonString(b.cpu)
+      << ",\n  \"quick\": " << (quick ? "true" : "false") << ",\n  \"cases\": [\n";
+  for (size_t i = 0; i < results.size(); ++i) {
+    const CaseResult& r = results[i];
+    out << "    {\"name\": " << jsonString(r.name) << ", \"title\": " << jsonString(r.title)
+        << ", \"pass\": " << (r.pass ? "true" : "false") << ", \"seconds\": " << jsonNumber(r.seconds)
+        << ",\n     \"rule\": " << jsonString(r.rule) << ",\n     \"figures\": {";
+    for (size_t j = 0; j < r.figures.size(); ++j) {
+      const Figure& f = r.figures[j];
+      out << (j ? ", " : "") << jsonString(f.key) << ": ";
+      if (!f.text.empty() && !std::isfinite(f.value)) out << jsonString(f.text);
+      else out << jsonNumber(f.value);
+    }
+    out << "},\n     \"notes\": [";
+    for (size_t j = 0; j < r.notes.size(); ++j) out << (j ? ", " : "") << jsonString(r.notes[j]);
+    out << "],\n     \"tables\": [";
+    for (size_t j = 0; j < r.tables.size(); ++j) {
+      const Table& t = r.tables[j];
+      out << (j ? ", " : "") << "{\"title\": " << jsonString(t.title) << ", \"rows\": [";
+      for (size_t k = 0; k < t.rows.size(); ++k) {
+        out << (k ? ", " : "") << "{";
+        for (size_t c = 0; c < t.rows[k].size() && c < t.header.size(); ++c)
+          out << (c ? ", " : "") << jsonString(t.header[c]) << ": " << jsonString(t.rows[k][c]);
+        out << "}";
+      }
+      out << "]}";
+    }
+    out << "]}" << (i + 1 < results.size() ? "," : "") << "\n";
+  }
+  out << "  ]\n}\n";
+}
+
+void writeMarkdown(const std::filesystem::path& file, const std::vector<CaseResult>& results,
+                   const accuracy::BuildInfo& b, bool quick, double seconds) {
+  std::ofstream md(file);
+  if (!md) throw std::runtime_error(file.string() + ": cannot write");
+  int passed = 0;
+  for (const CaseResult& r : results) passed += r.pass ? 1 : 0;
+  md << "# rigidlab stability report" << (quick ? " (quick versions)" : "") << "\n\n";
+  md << "engine " << b.engine_version << ", git " << b.git_hash << ", " << b.build << ", " << b.cpu << "; "
+     << passed << " of " << results.size() << " cases pass; " << std::lround(seconds) << " s.\n\n";
+  md << "| case | result | key figures |\n|---|---|---|\n";
+  for (const CaseResult& r : results) {
+    std::string figures;
+    for (size_t i = 0; i < r.figures.size() && i < 4; ++i)
+      figures += (i ? "; " : "") + r.figures[i].key + " = " +
+                 (r.figures[i].text.empty() || std::isfinite(r.figures[i].value) ? fmt(r.figures[i].value) : r.figures[i].text) +
+                 (r.figures[i].unit.empty() ? "" : " " + r.figures[i].unit);
+    md << "| [" << r.name << "](#" << r.name << ") | " << (r.pass ? "PASS" : "**FAIL**") << " | " << mdCell(figures) << " |\n";
+  }
+  for (const CaseResult& r : results) {
+    md << "\n## " << r.name << "\n\n**" << r.title << "** — " << (r.pass ? "PASS" : "**FAIL**") << " ("
+       << fmt(r.seconds, 3) << " s)\n\nRule: " << r.rule << ".\n\n";
+    for (const std::string& n : r.notes) md << "- " << n << "\n";
+    if (!r.notes.empty()) md << "\n";
+    if (!r.figures.empty()) {
+      md << "| figure | value |\n|---|---|\n";
+      for (const Figure& f : r.figures)
+        md << "| " << f.key << " | "
+           << (f.text.empty() || std::isfinite(f.value) ? fmt(f.value) : f.text) << (f.unit.empty() ? "" : " " + f.unit)
+           << " |\n";
+      md << "\n";
+    }
+    for (const Table& t : r.tables) {
+      md << t.title << ":\n\n|";
+      for (const std::string& h : t.header) md << ' ' << mdCell(h) << " |";
+      md << "\n|";
+      for (size_t i = 0; i < t.header.size(); ++i) md << "---|";
+      md << "\n";
+      for (const auto& row : t.rows) {
+        md << "|";
+        for (const std::string& c : row) md << ' ' << mdCell(c) << " |";
+        md << "\n";
+      }
+      md << "\n";
+    }
+  }
+}
+
+}  // namespace
+
+int stabilityCommand(const std::vector<std::string>& argv) {
+  const Args args("stability", argv, {"out", "cases"}, {"quick"});
+  if (args.help()) {
+    std::fputs(help().c_str(), stdout);
+    return kExitOk;
+  }
+  if (!args.positional().empty()) throw UsageError("stability: unexpected argument '" + args.positional()[0] + "'");
+  const bool quick = args.flag("quick");
+  const std::filesystem::path out = args.value("out").value_or("stability-report");
+  std::vector<const Case*> selected;
+  if (const auto list = args.value("cases")) {
+    std::istringstream in(*list);
+    std::string name;
+    while (std::getline(in, name, ',')) {
+      if (name.empty()) continue;
+      const Case* found = nullptr;
+      for (const Case& c : cases())
+        if (c.name == name) found = &c;
+      if (!found) throw UsageError("stability: unknown case '" + name + "' (see rigidlab stability --help)");
+      selected.push_back(found);
+    }
+  } else {
+    for (const Case& c : cases()) selected.push_back(&c);
+  }
+
+  std::error_code ec;
+  std::filesystem::create_directories(out, ec);
+  if (ec) {
+    std::fprintf(stderr, "stability: cannot create %s: %s\n", out.string().c_str(), ec.message().c_str());
+    return kExitSceneError;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<CaseResult> results;
+  const bool tty = isatty(STDERR_FILENO);
+  for (size_t i = 0; i < selected.size(); ++i) {
+    const Case& c = *selected[i];
+    std::fprintf(stderr, tty ? "\rstability [%zu/%zu] %-40s" : "stability [%zu/%zu] %s\n", i + 1, selected.size(), c.name.c_str());
+    std::fflush(stderr);
+    const auto t0 = std::chrono::steady_clock::now();
+    CaseResult r;
+    try {
+      r = c.run(quick);
+    } catch (const std::exception& e) {
+      r.name = c.name;
+      r.title = c.summary;
+      r.rule = "the case must run";
+      r.pass = false;
+      r.notes.push_back(std::string("error: ") + e.what());
+    }
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (tty) std::fprintf(stderr, "\r%70s\r", "");
+    std::printf("%-24s %s  %6.2f s", r.name.c_str(), r.pass ? "PASS" : "FAIL", r.seconds);
+    if (!r.pass && !r.notes.empty()) std::printf("  %s", r.notes.front().c_str());
+    std::printf("\n");
+    std::fflush(stdout);
+    results.push_back(std::move(r));
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const accuracy::BuildInfo build = accuracy::buildInfo();
+  try {
+    writeJson(out / "stability.json", results, build, quick);
+    writeMarkdown(out / "stability.md", results, build, quick, seconds);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "stability: %s\n", e.what());
+    return kExitSceneError;
+  }
+  int failed = 0;
+  for (const CaseResult& r : results) failed += r.pass ? 0 : 1;
+  std::printf("%zu of %zu cases pass; report in %s (stability.md, stability.json)\n", results.size() - failed,
+              results.size(), out.string().c_str());
+  return failed ? kExitSceneError : kExitOk;
 }
 
 }  // namespace rigidlab::app
