@@ -27,6 +27,7 @@ struct Rng {
 WorldDef peerWorld() {
   WorldDef def;
   def.gravity = Vec2(0.0, -10.0);
+  def.sleeping = false;  // the peers time their scenes with sleeping off
   return def;  // otherwise rigidlab's defaults: what a user gets
 }
 

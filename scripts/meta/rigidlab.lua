@@ -61,6 +61,7 @@ function vec2(x, y) end
 ---@field restitution number 0..1 (read/write)
 ---@field friction number dynamic friction coefficient (read/write)
 ---@field static_friction number static friction coefficient (read/write)
+---@field awake boolean false while the body sleeps (read; write true to wake it and its island)
 ---@field id integer 1, 2, 3, ... in creation order, never reused (read only)
 ---@field center rigidlab.Vec2 world centre of mass (read only)
 ---@field inertia number kg·m² about the centre of mass (read only)
@@ -154,6 +155,7 @@ function ForceHandle:remove() end
 ---@field integrator "euler"|"semi_implicit_euler"|"rk4"|"implicit_euler" (read/write)
 ---@field dt number step size, s (read/write)
 ---@field iterations integer contact solver iterations (read/write)
+---@field sleeping boolean whether still islands fall asleep (read/write; false wakes everything)
 ---@field time number simulated time, s (read only)
 ---@field step_count integer steps taken (read only)
 ---@field title string the scene's title (read only)
@@ -234,6 +236,7 @@ function Draw:text(position, text, color) end
 ---@field dt? number default 1/60
 ---@field integrator? "euler"|"semi_implicit_euler"|"rk4"|"implicit_euler" default "rk4"
 ---@field iterations? integer default 10
+---@field sleeping? boolean default true: islands that stay still for 0.5 s stop being simulated
 ---@field duration? number length of a headless run, s, default 10
 ---@field camera? {center?: rigidlab.VecLike, height?: number} initial sandbox view, metres
 

@@ -335,3 +335,59 @@ TEST_CASE("NaN firewall: an overflowing spring is named") {
   CHECK(w.incidents()[0].cause.find("spring") != std::string::npos);
   CHECK(isFinite(w.body(a).center));
 }
+
+TEST_CASE("sleeping: a resting island falls asleep, costs nothing, and wakes when touched or edited") {
+  World w;
+  test::addBox(w, 40, 1, {0, -0.5}, true);
+  const BodyId low = test::addBox(w, 1, 1, {0, 0.5});
+  const BodyId high = test::addBox(w, 1, 1, {0, 1.5});
+  int steps_to_sleep = 0;
+  while (w.body(low).awake && steps_to_sleep < 600) {
+    w.step(1.0 / 60.0);
+    ++steps_to_sleep;
+  }
+  MESSAGE("the stack fell asleep after " << steps_to_sleep << " steps");
+  CHECK(steps_to_sleep >= 30);  // at least time_to_sleep = 0.5 s of stillness
+  CHECK(steps_to_sleep < 120);
+  CHECK_FALSE(w.body(high).awake);  // the island sleeps together
+  const Vec2 p = w.body(high).position();
+  for (int i = 0; i < 60; ++i) w.step(1.0 / 60.0);
+  CHECK(w.stats().awake_bodies == 0);
+  CHECK(w.body(high).position() == p);  // not integrated while asleep
+
+  // A ball dropped on it wakes the whole island when it arrives.
+  const BodyId ball = test::addCircle(w, 0.3, {0.0, 4.0});
+  CHECK_FALSE(w.body(low).awake);
+  bool woke = false;
+  for (int i = 0; i < 120 && !woke; ++i) {
+    w.step(1.0 / 60.0);
+    woke = w.body(low).awake && w.body(high).awake;
+  }
+  CHECK(woke);
+  CHECK(w.body(ball).awake);
+
+  // Edits wake too.
+  for (int i = 0; i < 300; ++i) w.step(1.0 / 60.0);
+  REQUIRE_FALSE(w.body(low).awake);
+  w.applyImpulse(high, {0, 0.1}, w.body(high).center);
+  CHECK(w.body(low).awake);
+}
+
+TEST_CASE("sleeping: forces that may change keep their bodies awake; springs at rest let them sleep") {
+  World w;
+  const BodyId hanging = test::addCircle(w, 0.2, {0, 0});
+  SpringDef s;
+  s.a = hanging;
+  s.anchor = {0, 2};
+  s.stiffness = 100;
+  s.damping = 20;
+  w.addSpring(s);
+  const BodyId pushed = test::addCircle(w, 0.2, {5, 0});
+  w.setGravity(Vec2::Zero());
+  w.addForce(std::make_unique<ConstantForce>(Vec2(0, 0), std::nullopt), pushed);  // zero, but a force
+  for (int i = 0; i < 600; ++i) w.step(1.0 / 60.0);
+  CHECK_FALSE(w.body(hanging).awake);
+  CHECK(w.body(pushed).awake);
+  w.setSleeping(false);
+  CHECK(w.body(hanging).awake);
+}

@@ -225,17 +225,25 @@ void solveContacts(WorldImpl& w) {
     w.solve_start_velocity[i] = w.bodies[i].velocity;
     w.solve_start_angular_velocity[i] = w.bodies[i].angular_velocity;
   }
-  for (Contact& c : w.contacts) prepare(w, c);
+  // Only contacts that touch an awake dynamic body are solved; the others keep their impulses.
+  w.solved.clear();
+  for (uint32_t k = 0; k < w.contacts.size(); ++k)
+    if (w.isActive(w.contacts[k].a) || w.isActive(w.contacts[k].b)) w.solved.push_back(k);
+  for (uint32_t k : w.solved) prepare(w, w.contacts[k]);
 
   auto& bodies = w.solver_velocities;
   bodies.resize(n);
   for (size_t i = 0; i < n; ++i) {
     const Body& b = w.bodies[i];
-    bodies[i] = {b.velocity.x(), b.velocity.y(), b.angular_velocity, b.inv_mass, b.inv_inertia};
+    if (w.isActive(static_cast<uint32_t>(i))) {
+      bodies[i] = {b.velocity.x(), b.velocity.y(), b.angular_velocity, b.inv_mass, b.inv_inertia};
+    } else {
+      bodies[i] = {0.0, 0.0, 0.0, 0.0, 0.0};  // static or asleep: immovable
+    }
   }
   auto& constraints = w.solver_contacts;
   constraints.clear();
-  for (const Contact& c : w.contacts) constraints.push_back(compact(c));
+  for (uint32_t k : w.solved) constraints.push_back(compact(w.contacts[k]));
   if (w.def.warm_starting) {
     // Start from the impulses carried over from the previous step (narrow_phase.cpp).
     for (SolverContact& c : constraints) {
@@ -250,7 +258,7 @@ void solveContacts(WorldImpl& w) {
     for (SolverContact& c : constraints) solve(bodies, c);
 
   for (size_t k = 0; k < constraints.size(); ++k) {
-    Contact& c = w.contacts[k];
+    Contact& c = w.contacts[w.solved[k]];
     for (int i = 0; i < c.count; ++i) {
       c.points[i].normal_impulse = constraints[k].p[i].pn;
       c.points[i].tangent_impulse = constraints[k].p[i].pt;
@@ -258,7 +266,7 @@ void solveContacts(WorldImpl& w) {
   }
   for (size_t i = 0; i < n; ++i) {
     Body& b = w.bodies[i];
-    if (!w.alive[i] || b.isStatic()) continue;
+    if (!w.isActive(static_cast<uint32_t>(i))) continue;
     b.velocity = Vec2(bodies[i].vx, bodies[i].vy);
     b.angular_velocity = bodies[i].w;
   }

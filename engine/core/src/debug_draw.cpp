@@ -54,6 +54,7 @@ void World::draw(DebugDraw& dd, const DrawOptions& opt) const {
   const Color dynamic_fill{0.25f, 0.45f, 0.75f, 0.8f}, dynamic_line{0.75f, 0.85f, 1.0f, 1.0f};
   const Color selected_line{1.0f, 0.85f, 0.2f, 1.0f};
   const Color frozen_fill{0.7f, 0.2f, 0.6f, 0.8f};  // stopped by the NaN firewall
+  const Color sleeping_fill{0.18f, 0.28f, 0.42f, 0.8f};  // asleep: a darker blue
   const auto transformOf = [&](size_t i) {
     return i < opt.transforms.size() ? opt.transforms[i] : w.bodies[i].xf;
   };
@@ -64,7 +65,7 @@ void World::draw(DebugDraw& dd, const DrawOptions& opt) const {
     const Body& b = w.bodies[i];
     const Transform xf = transformOf(i);
     const bool selected = b.id == opt.selected;
-    const Color& fill = b.frozen ? frozen_fill : b.isStatic() ? static_fill : dynamic_fill;
+    const Color& fill = b.frozen ? frozen_fill : b.isStatic() ? static_fill : b.awake ? dynamic_fill : sleeping_fill;
     const Color& line = selected ? selected_line : b.isStatic() ? static_line : dynamic_line;
     if (opt.shapes) {
       if (b.shape.type == ShapeType::Circle) {

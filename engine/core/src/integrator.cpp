@@ -78,7 +78,7 @@ void setStageState(WorldImpl& w, uint32_t i, const Vec2& c, double angle, const 
   s.angular_velocity = omega;
 }
 
-bool isMoving(const WorldImpl& w, uint32_t i) { return w.alive[i] && !w.bodies[i].isStatic(); }
+bool isMoving(const WorldImpl& w, uint32_t i) { return w.isActive(i); }  // dynamic and awake
 
 void integrateInterval(WorldImpl& w, double t0, double h) {
   const uint32_t n = static_cast<uint32_t>(w.bodies.size());

@@ -22,6 +22,14 @@ void narrowPhase(WorldImpl& w) {
   for (const BodyPair& pair : w.pairs) {
     const Body& a = w.bodies[pair.a];
     const Body& b = w.bodies[pair.b];
+    while (old < prev.size() && (prev[old].a < pair.a || (prev[old].a == pair.a && prev[old].b < pair.b))) ++old;
+    const bool had = old < prev.size() && prev[old].a == pair.a && prev[old].b == pair.b;
+    if (!w.isActive(pair.a) && !w.isActive(pair.b)) {
+      // Both asleep (or one static): nothing moved, so the contact is as it was; keep it with its
+      // impulses for when the island wakes.
+      if (had) w.contacts.push_back(prev[old]);
+      continue;
+    }
     const auto placed = [&](uint32_t slot, const Body& body) {
       return WorldPolygon{&w.world_vertices[w.polygon_offset[slot]], &w.world_normals[w.polygon_offset[slot]],
                           static_cast<int>(body.shape.vertices.size()), body.shape.extent};
@@ -30,6 +38,9 @@ void narrowPhase(WorldImpl& w) {
                            ? collidePolygons(placed(pair.a, a), placed(pair.b, b), w.def.contact_margin)
                            : collideShapes(a.shape, a.xf, b.shape, b.xf, w.def.contact_margin);
     if (m.count == 0) continue;
+    // An awake body reaching a sleeping one wakes its island.
+    if (!a.isStatic() && !a.awake) w.wakeIsland(pair.a);
+    if (!b.isStatic() && !b.awake) w.wakeIsland(pair.b);
     Contact& c = w.contacts.emplace_back();  // reused storage: no allocation in steady state
     c.a = pair.a;
     c.b = pair.b;
@@ -51,8 +62,7 @@ void narrowPhase(WorldImpl& w) {
     c.restitution = std::max(a.material.restitution, b.material.restitution);
     c.friction = std::sqrt(a.material.friction * b.material.friction);
     c.static_friction = std::sqrt(a.material.static_friction * b.material.static_friction);
-    while (old < prev.size() && (prev[old].a < c.a || (prev[old].a == c.a && prev[old].b < c.b))) ++old;
-    if (old < prev.size() && prev[old].a == c.a && prev[old].b == c.b) {
+    if (had) {
       for (int i = 0; i < c.count; ++i)
         for (int j = 0; j < prev[old].count; ++j)
           if (prev[old].points[j].id == c.points[i].id) {

@@ -45,11 +45,16 @@
 namespace rigidlab {
 namespace {
 
+// Inverse masses as the correction sees them: a sleeping body does not move.
+double invMass(const WorldImpl& w, uint32_t i) { return w.isActive(i) ? w.bodies[i].inv_mass : 0.0; }
+double invInertia(const WorldImpl& w, uint32_t i) { return w.isActive(i) ? w.bodies[i].inv_inertia : 0.0; }
+
 void linearProjection(WorldImpl& w) {
   for (const Contact& c : w.contacts) {
     Body& a = w.bodies[c.a];
     Body& b = w.bodies[c.b];
-    const double inv_sum = a.inv_mass + b.inv_mass;
+    const double ima = invMass(w, c.a), imb = invMass(w, c.b);
+    const double inv_sum = ima + imb;
     if (inv_sum == 0.0) continue;
     double deepest = 0.0;  // most negative separation at detection
     for (int i = 0; i < c.count; ++i) deepest = std::min(deepest, c.points[i].separation);
@@ -58,8 +63,8 @@ void linearProjection(WorldImpl& w) {
     const double moved = (b.center - w.correction_start[c.b] - (a.center - w.correction_start[c.a])).dot(c.normal);
     const double depth = -deepest - moved;
     if (depth <= 0.0) continue;
-    a.center -= c.normal * (depth * a.inv_mass / inv_sum);
-    b.center += c.normal * (depth * b.inv_mass / inv_sum);
+    a.center -= c.normal * (depth * ima / inv_sum);
+    b.center += c.normal * (depth * imb / inv_sum);
   }
 }
 
@@ -84,7 +89,8 @@ void nonlinearGaussSeidel(WorldImpl& w) {
     for (const Contact& c : w.contacts) {
       Body& a = w.bodies[c.a];
       Body& b = w.bodies[c.b];
-      if (a.inv_mass + b.inv_mass == 0.0) continue;
+      const double ima = invMass(w, c.a), imb = invMass(w, c.b), iia = invInertia(w, c.a), iib = invInertia(w, c.b);
+      if (ima + imb == 0.0) continue;
       for (int i = 0; i < c.count; ++i) {
         const ContactPoint& cp = c.points[i];
         const Vec2 n = a.xf.q.apply(c.local_normal);
@@ -96,12 +102,12 @@ void nonlinearGaussSeidel(WorldImpl& w) {
         const Vec2 p = 0.5 * (pa + pb);
         const Vec2 ra = p - a.center, rb = p - b.center;
         const double rna = cross(ra, n), rnb = cross(rb, n);
-        const double k = a.inv_mass + b.inv_mass + a.inv_inertia * rna * rna + b.inv_inertia * rnb * rnb;
+        const double k = ima + imb + iia * rna * rna + iib * rnb * rnb;
         const Vec2 impulse = (-correction / k) * n;
-        a.center -= a.inv_mass * impulse;
-        b.center += b.inv_mass * impulse;
-        rotate(a, -a.inv_inertia * cross(ra, impulse));
-        rotate(b, b.inv_inertia * cross(rb, impulse));
+        a.center -= ima * impulse;
+        b.center += imb * impulse;
+        rotate(a, -iia * cross(ra, impulse));
+        rotate(b, iib * cross(rb, impulse));
       }
     }
     if (deepest >= -3.0 * w.def.allowed_penetration) break;  // close enough: stop early
@@ -125,7 +131,7 @@ void applyContactDisplacement(WorldImpl& w) {
   for (size_t i = 0; i < w.bodies.size(); ++i) {
     if (!w.alive[i] || w.overlap_weight[i] <= 0.0) continue;
     Body& b = w.bodies[i];
-    if (b.isStatic()) continue;
+    if (!w.isActive(static_cast<uint32_t>(i))) continue;
     const double tau = w.overlap_time[i] / w.overlap_weight[i];
     b.center += tau * (b.velocity - w.solve_start_velocity[i]);
     b.angle += tau * (b.angular_velocity - w.solve_start_angular_velocity[i]);

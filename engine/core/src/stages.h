@@ -14,6 +14,7 @@ void findPairs(WorldImpl& w);              // broad_phase.cpp     origin.md §7
 void narrowPhase(WorldImpl& w);            // narrow_phase.cpp    origin.md §7
 void solveContacts(WorldImpl& w);          // contact_solver.cpp  origin.md §8–10
 void correctPositions(WorldImpl& w);       // position_correction.cpp  origin.md §9
+void updateSleep(WorldImpl& w);            // sleep.cpp           islands and sleeping
 void expireForces(WorldImpl& w);           // world.cpp           origin.md §6
 
 }  // namespace rigidlab

@@ -61,6 +61,7 @@ void World::step(double dt) {
   guardNonFinite(w, "the contact solve");
   const auto t5 = Clock::now();
   w.clock.advance(dt);
+  updateSleep(w);  // islands whose bodies stayed still long enough stop being simulated
   ++w.step_count;
   expireForces(w);  // origin.md §6: forces whose time ran out are removed
   w.locked = false;
@@ -80,7 +81,7 @@ void World::step(double dt) {
     if (!w.alive[i]) continue;
     ++s.bodies;
     if (!w.bodies[i].isStatic()) ++s.dynamic_bodies;
-    if (!w.bodies[i].isStatic()) ++s.awake_bodies;
+    if (w.isActive(static_cast<uint32_t>(i))) ++s.awake_bodies;
   }
   for (const ForceEntry& f : w.forces) s.forces += f.alive ? 1 : 0;
 }
@@ -120,6 +121,10 @@ World::World(const WorldDef& def) : impl_(std::make_unique<WorldImpl>()) {
   setRestitutionThreshold(def.restitution_threshold);
   setStaticFrictionSpeed(def.static_friction_speed);
   setContactMargin(def.contact_margin);
+  setSleeping(def.sleeping);
+  impl_->def.sleep_linear_speed = requireNonNegative("sleep_linear_speed", def.sleep_linear_speed);
+  impl_->def.sleep_angular_speed = requireNonNegative("sleep_angular_speed", def.sleep_angular_speed);
+  impl_->def.time_to_sleep = requireNonNegative("time_to_sleep", def.time_to_sleep);
 }
 
 World::~World() = default;
@@ -127,7 +132,13 @@ World::World(World&&) noexcept = default;
 World& World::operator=(World&&) noexcept = default;
 
 const WorldDef& World::settings() const { return impl_->def; }
-void World::setGravity(const Vec2& g) { impl_->def.gravity = requireFinite("gravity", g); }
+void World::setGravity(const Vec2& g) {
+  impl_->def.gravity = requireFinite("gravity", g);
+  for (Body& b : impl_->bodies) {  // everything may start to move
+    b.awake = true;
+    b.sleep_time = 0.0;
+  }
+}
 void World::setIntegrator(Integrator integrator) {
   if (!integratorName(integrator).size()) throw InputError("integrator", "unknown integrator");
   impl_->def.integrator = integrator;
@@ -149,6 +160,21 @@ void World::setPositionIterations(int iterations) {
 void World::setRestitutionThreshold(double speed) {
   impl_->def.restitution_threshold = requireNonNegative("restitution_threshold", speed);
 }
+void World::setSleeping(bool on) {
+  impl_->def.sleeping = on;
+  if (!on)
+    for (Body& b : impl_->bodies) {
+      b.awake = true;
+      b.sleep_time = 0.0;
+    }
+}
+
+void World::wake(BodyId id) {
+  WorldImpl& w = *impl_;
+  w.get(id);
+  w.wakeIsland(id.index);
+}
+
 void World::setBroadPhase(BroadPhaseKind kind) {
   impl_->def.broad_phase = kind;
   if (kind == BroadPhaseKind::AllPairs) {
@@ -306,6 +332,10 @@ void World::destroyBody(BodyId id) {
     const ForceEntry& f = w.forces[i];
     if (f.alive && (f.a == id || f.b == id)) removeForce({i, f.generation});
   }
+  for (const Contact& c : w.contacts) {  // what rested on it may now fall
+    if (c.a == id.index) w.wakeIsland(c.b);
+    if (c.b == id.index) w.wakeIsland(c.a);
+  }
   Body& b = w.bodies[id.index];
   const BodyId old = b.id;
   b = Body{};
@@ -346,6 +376,7 @@ std::optional<BodyId> World::findBody(uint32_t uid) const {
 void World::setTransform(BodyId id, const Vec2& position, double angle) {
   requireUnlocked(*impl_, "setTransform");
   Body& b = impl_->get(id);
+  impl_->wakeIsland(id.index);
   requireFinite("position", position);
   requireFinite("angle", angle);
   b.angle = angle;
@@ -356,6 +387,7 @@ void World::setTransform(BodyId id, const Vec2& position, double angle) {
 void World::setVelocity(BodyId id, const Vec2& velocity) {
   requireUnlocked(*impl_, "setVelocity");
   Body& b = impl_->get(id);
+  impl_->wakeIsland(id.index);
   requireFinite("velocity", velocity);
   if (!b.isStatic()) b.velocity = velocity;
 }
@@ -363,6 +395,7 @@ void World::setVelocity(BodyId id, const Vec2& velocity) {
 void World::setAngularVelocity(BodyId id, double angular_velocity) {
   requireUnlocked(*impl_, "setAngularVelocity");
   Body& b = impl_->get(id);
+  impl_->wakeIsland(id.index);
   requireFinite("angular_velocity", angular_velocity);
   if (!b.isStatic()) b.angular_velocity = angular_velocity;
 }
@@ -370,6 +403,7 @@ void World::setAngularVelocity(BodyId id, double angular_velocity) {
 void World::setType(BodyId id, BodyType type) {
   requireUnlocked(*impl_, "setType");
   Body& b = impl_->get(id);
+  impl_->wakeIsland(id.index);
   b.type = type;
   if (type == BodyType::Dynamic) b.frozen = false;
   if (b.isStatic()) {
@@ -382,6 +416,7 @@ void World::setType(BodyId id, BodyType type) {
 void World::setMass(BodyId id, double mass) {
   requireUnlocked(*impl_, "setMass");
   Body& b = impl_->get(id);
+  impl_->wakeIsland(id.index);
   requirePositive("mass", mass);
   setMassData(b, mass / b.area);
 }
@@ -399,6 +434,7 @@ void World::setName(BodyId id, std::string name) {
 void World::applyImpulse(BodyId id, const Vec2& impulse, const Vec2& world_point) {
   requireUnlocked(*impl_, "applyImpulse");
   Body& b = impl_->get(id);
+  impl_->wakeIsland(id.index);
   requireFinite("impulse", impulse);
   requireFinite("point", world_point);
   // Δv = J / m, Δω = (p − c) × J / I.
@@ -436,6 +472,8 @@ ForceId World::addForce(std::unique_ptr<Force> force, BodyId a, BodyId b, double
   e.b = b;
   e.next_step_only = duration == kNextStep;
   e.expires_at = duration == kForever || e.next_step_only ? kForever : w.clock.t + duration;
+  w.wakeIsland(a.index);
+  if (!b.isNull()) w.wakeIsland(b.index);
   e.alive = true;
   uint32_t index;
   if (!w.free_forces.empty()) {
@@ -472,6 +510,8 @@ void World::removeForce(ForceId id) {
   WorldImpl& w = *impl_;
   requireUnlocked(w, "removeForce");
   ForceEntry& f = liveForce(w, id);
+  w.wakeIsland(f.a.index);  // what the force held may now move
+  if (!f.b.isNull()) w.wakeIsland(f.b.index);
   f.alive = false;
   f.force.reset();
   ++f.generation;

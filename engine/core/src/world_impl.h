@@ -97,7 +97,17 @@ struct WorldImpl {
   std::vector<uint32_t> polygon_offset;             // per slot: where its polygon starts in them
   std::vector<BodyPair> pairs;
   std::vector<Contact> contacts;           // this step's, sorted by (a, b)
+  std::vector<uint32_t> solved;            // indices of the contacts the solver works on
   std::vector<Contact> previous_contacts;  // last step's, for warm starting
+
+  // Sleeping (sleep.cpp): island of each body slot at the last update, and the wake-up call that
+  // every edit, contact and force makes.
+  std::vector<uint32_t> island;
+  std::vector<uint32_t> island_parent;  // union–find scratch
+  std::vector<double> island_sleep;     // per island root: the shortest sleep time of its members
+  std::vector<char> keep_awake;         // per slot: a force that forbids sleep acts on it
+  void wakeIsland(uint32_t slot);
+  bool isActive(uint32_t slot) const { return alive[slot] && !bodies[slot].isStatic() && bodies[slot].awake; }
 
   bool isLive(BodyId id) const {
     return id.index < bodies.size() && alive[id.index] && bodies[id.index].id.generation == id.generation;

@@ -11,14 +11,14 @@ namespace rigidlab::lua::api {
 // body.<field>: readable ones (methods included) and the writable subset.
 inline const std::vector<std::string_view> kBodyReadable = {
     "position", "angle", "velocity", "angular_velocity", "mass", "static", "name", "restitution",
-    "friction", "static_friction", "id", "center", "inertia", "density", "shape", "radius", "vertices",
+    "friction", "static_friction", "awake", "id", "center", "inertia", "density", "shape", "radius", "vertices",
     "removed", "apply_impulse", "apply_force"};
 inline const std::vector<std::string_view> kBodyWritable = {
     "position", "angle", "velocity", "angular_velocity", "mass", "static", "name", "restitution",
-    "friction", "static_friction"};
+    "friction", "static_friction", "awake"};
 
-inline const std::vector<std::string_view> kWorldFields = {"gravity", "integrator", "dt", "iterations", "time",
-                                                           "step_count", "title"};
+inline const std::vector<std::string_view> kWorldFields = {"gravity", "integrator", "dt", "iterations", "sleeping",
+                                                           "time", "step_count", "title"};
 inline const std::vector<std::string_view> kWorldMethods = {
     "add_box", "add_circle", "add_polygon", "add_spring", "add_damper", "add_force", "bodies", "find", "remove",
     "step", "kinetic_energy", "potential_energy"};
@@ -31,6 +31,6 @@ inline const std::vector<std::string_view> kSpringOptions = {"a", "b", "anchor",
 inline const std::vector<std::string_view> kDamperOptions = {"body", "coefficient", "angular_coefficient"};
 inline const std::vector<std::string_view> kForceOptions = {"body", "evaluate", "duration", "point", "other"};
 inline const std::vector<std::string_view> kSceneOptions = {"title", "gravity", "dt", "integrator", "iterations",
-                                                            "duration", "camera"};
+                                                            "sleeping", "duration", "camera"};
 
 }  // namespace rigidlab::lua::api

@@ -101,6 +101,7 @@ sol::object bodyIndex(sol::this_state ts, const LuaBody& self, sol::stack_object
   if (k == "density") return sol::make_object(L, b.density);
   if (k == "center") return makeVec(L, b.center);
   if (k == "static") return sol::make_object(L, b.isStatic());
+  if (k == "awake") return sol::make_object(L, !b.isStatic() && b.awake);
   if (k == "name") return sol::make_object(L, b.name);
   if (k == "restitution") return sol::make_object(L, b.material.restitution);
   if (k == "friction") return sol::make_object(L, b.material.friction);
@@ -146,6 +147,9 @@ void bodyNewIndex(sol::this_state ts, const LuaBody& self, sol::stack_object key
     } else if (k == "static") {
       if (value.get_type() != sol::type::boolean) fail(L, function, "must be true or false, got " + describe(value));
       w.setType(id, value.as<bool>() ? BodyType::Static : BodyType::Dynamic);
+    } else if (k == "awake") {
+      if (value.get_type() != sol::type::boolean) fail(L, function, "must be true or false, got " + describe(value));
+      if (value.as<bool>()) w.wake(id);  // bodies fall asleep on their own; a script can only wake them
     } else if (k == "name") {
       if (value.get_type() != sol::type::string) fail(L, function, "must be a string, got " + describe(value));
       w.setName(id, value.as<std::string>());

@@ -291,6 +291,7 @@ sol::object worldIndex(sol::this_state ts, const LuaWorld& self, sol::stack_obje
   if (k == "integrator") return sol::make_object(L, std::string(integratorName(w.settings().integrator)));
   if (k == "dt") return sol::make_object(L, self.scene->settings.dt);
   if (k == "iterations") return sol::make_object(L, w.settings().iterations);
+  if (k == "sleeping") return sol::make_object(L, w.settings().sleeping);
   if (k == "time") return sol::make_object(L, w.time());
   if (k == "step_count") return sol::make_object(L, w.stepCount());
   if (k == "title") return sol::make_object(L, self.scene->settings.title);
@@ -327,6 +328,9 @@ void worldNewIndex(sol::this_state ts, const LuaWorld& self, sol::stack_object k
       if (n != std::floor(n) || n < 1 || n > 10000)
         fail(L, function, "must be a whole number between 1 and 10000, got " + describe(value));
       w.setIterations(static_cast<int>(n));
+    } else if (k == "sleeping") {
+      if (value.get_type() != sol::type::boolean) fail(L, function, "must be true or false, got " + describe(value));
+      w.setSleeping(value.as<bool>());
     } else if (std::find(kWorldFields.begin(), kWorldFields.end(), k) != kWorldFields.end() ||
                std::find(kWorldMethods.begin(), kWorldMethods.end(), k) != kWorldMethods.end()) {
       fail(L, function, "is read-only");

@@ -74,6 +74,7 @@ void readSettings(Scene::Impl& s, WorldDef& def, const std::string& at) {
       def.integrator = *integrator;
     }
     def.iterations = o.integer("iterations", 1, 10000, def.iterations);
+    def.sleeping = o.boolean("sleeping", def.sleeping);
     if (o.has("camera")) {
       const Options c(L, "scene.camera", o.get("camera"), {"center", "height"});
       if (c.has("center")) s.settings.camera_center = c.vec("center");

@@ -82,6 +82,11 @@ struct Body {
   // through contacts. Switching it back to dynamic (World::setType) clears the flag.
   bool frozen = false;
 
+  // Sleeping (World::step, sleep.cpp): a dynamic body whose island has been nearly still for
+  // WorldDef::time_to_sleep stops being simulated until something touches, pushes or edits it.
+  bool awake = true;
+  double sleep_time = 0.0;  // how long it has been below the sleep speeds [s]
+
   Vec2 position() const { return xf.p; }
   bool isStatic() const { return type == BodyType::Static; }
   // Velocity of a world point attached to the body: v + ω × (p − c).

@@ -96,6 +96,10 @@ class Force {
   // implicit_euler then treats its stiffness and damping implicitly, and the Euler methods its
   // damping (so a damper never flips a velocity's sign). The default: explicit only.
   virtual bool linearize(const ForceInput& /*in*/, ForceJacobian& /*out*/) const { return false; }
+  // True if the bodies it acts on may fall asleep while it acts: a force that depends only on the
+  // bodies' states (springs, dampers) is constant while they rest. Forces that may change with time
+  // (scripts, pushes, the mouse) keep their bodies awake. The default: keep awake.
+  virtual bool allowsSleep() const { return false; }
   // Potential energy stored in the force (springs), for World::potentialEnergy. [J]
   virtual double potentialEnergy(const BodyState& /*a*/, const BodyState* /*b*/) const { return 0.0; }
   virtual void draw(DebugDraw& /*dd*/, const BodyState& /*a*/, const BodyState* /*b*/) const {}

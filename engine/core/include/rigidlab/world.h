@@ -69,6 +69,12 @@ struct WorldDef {
   // velocities. Off reproduces the thesis, where held bodies creep by their gravity travel.
   bool contact_displacement = true;
   BroadPhaseKind broad_phase = BroadPhaseKind::Grid;
+  // Sleeping: an island of touching (or spring-linked) bodies whose speeds all stay below these for
+  // time_to_sleep stops being simulated until something touches, pushes or edits it.
+  bool sleeping = true;
+  double sleep_linear_speed = 0.01;        // [m/s] ≥ 0
+  double sleep_angular_speed = 0.0349;     // [rad/s] ≥ 0 (2°/s)
+  double time_to_sleep = 0.5;              // [s] ≥ 0
   // Speculative contact distance: pairs closer than this get contact points before they touch, and
   // the solver lets them close at most the gap in the next step (v_n ≥ −gap / h). Keeps resting
   // contacts from flickering on and off at zero separation. [m] ≥ 0
@@ -146,6 +152,7 @@ class World {
   void setStaticFrictionSpeed(double speed);
   void setContactMargin(double distance);
   void setBroadPhase(BroadPhaseKind kind);
+  void setSleeping(bool on);  // off wakes every body
 
   // --- bodies
   BodyId createBody(const BodyDef& def);  // InputError names the bad field and value
@@ -166,6 +173,8 @@ class World {
   void setName(BodyId id, std::string name);
   // Instant change of momentum by the impulse J at a world point (origin.md §1, J = Δp).
   void applyImpulse(BodyId id, const Vec2& impulse, const Vec2& world_point);
+  // Wakes a sleeping body and the bodies of its island. Every edit above wakes its body too.
+  void wake(BodyId id);
 
   // --- forces. `duration` [s]: the force acts for that much simulated time from now and is removed
   // at the end of the step in which it runs out (origin.md §6); infinity = permanent. A step that

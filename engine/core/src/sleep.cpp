@@ -1,0 +1,92 @@
+// Islands and sleeping. At the end of each step, bodies are grouped into islands: dynamic bodies
+// linked by a contact or by a two-body force (static bodies link nothing). A body counts its time
+// below WorldDef::sleep_linear_speed and sleep_angular_speed; when every body of an island has been
+// that still for WorldDef::time_to_sleep, the whole island sleeps: zero velocity, no integration,
+// no contact solving, no force evaluation. An island with a moving member wakes its sleeping ones.
+// Bodies wake when an awake body touches them (narrow_phase.cpp), when they are edited or pushed
+// (world.cpp), or when a force that forbids sleep is attached (Force::allowsSleep).
+// Islands are found with a union–find over slots in slot order, so the result is deterministic.
+#include "stages.h"
+#include "world_impl.h"
+
+namespace rigidlab {
+namespace {
+
+uint32_t root(std::vector<uint32_t>& parent, uint32_t i) {
+  while (parent[i] != i) {
+    parent[i] = parent[parent[i]];  // path halving
+    i = parent[i];
+  }
+  return i;
+}
+
+void link(WorldImpl& w, uint32_t a, uint32_t b) {
+  const auto isDynamic = [&](uint32_t i) { return w.alive[i] && !w.bodies[i].isStatic(); };
+  if (!isDynamic(a) || !isDynamic(b)) return;
+  const uint32_t ra = root(w.island_parent, a), rb = root(w.island_parent, b);
+  if (ra != rb) w.island_parent[std::max(ra, rb)] = std::min(ra, rb);  // the smaller slot is the root
+}
+
+}  // namespace
+
+void WorldImpl::wakeIsland(uint32_t slot) {
+  if (slot >= bodies.size() || !alive[slot] || bodies[slot].awake) return;
+  const uint32_t id = island.size() > slot ? island[slot] : slot;
+  for (uint32_t i = 0; i < bodies.size(); ++i) {
+    if (!alive[i] || (i != slot && (island.size() <= i || island[i] != id))) continue;
+    bodies[i].awake = true;
+    bodies[i].sleep_time = 0.0;
+  }
+}
+
+void updateSleep(WorldImpl& w) {
+  const uint32_t n = static_cast<uint32_t>(w.bodies.size());
+  const double dt = w.dt;
+  // Forces that keep their bodies awake.
+  w.keep_awake.assign(n, 0);
+  for (const ForceEntry& f : w.forces) {
+    if (!f.alive || f.force->allowsSleep()) continue;
+    w.keep_awake[f.a.index] = 1;
+    if (!f.b.isNull()) w.keep_awake[f.b.index] = 1;
+  }
+  const double v2 = w.def.sleep_linear_speed * w.def.sleep_linear_speed;
+  for (uint32_t i = 0; i < n; ++i) {
+    Body& b = w.bodies[i];
+    if (!w.isActive(i)) continue;
+    const bool still = b.velocity.squaredNorm() <= v2 && std::abs(b.angular_velocity) <= w.def.sleep_angular_speed;
+    b.sleep_time = still && !w.keep_awake[i] ? b.sleep_time + dt : 0.0;
+  }
+
+  w.island_parent.resize(n);
+  for (uint32_t i = 0; i < n; ++i) w.island_parent[i] = i;
+  for (const Contact& c : w.contacts) link(w, c.a, c.b);
+  for (const ForceEntry& f : w.forces)
+    if (f.alive && !f.b.isNull()) link(w, f.a.index, f.b.index);
+
+  // Per island: the shortest sleep time of its members (a sleeping member counts as asleep).
+  w.island.resize(n);
+  w.island_sleep.assign(n, std::numeric_limits<double>::infinity());
+  for (uint32_t i = 0; i < n; ++i) {
+    w.island[i] = root(w.island_parent, i);
+    if (!w.alive[i] || w.bodies[i].isStatic()) continue;
+    const double t = w.bodies[i].awake ? w.bodies[i].sleep_time : std::numeric_limits<double>::infinity();
+    w.island_sleep[w.island[i]] = std::min(w.island_sleep[w.island[i]], t);
+  }
+  for (uint32_t i = 0; i < n; ++i) {
+    if (!w.alive[i] || w.bodies[i].isStatic()) continue;
+    Body& b = w.bodies[i];
+    const double t = w.island_sleep[w.island[i]];
+    if (w.def.sleeping && t >= w.def.time_to_sleep) {
+      if (b.awake) {
+        b.awake = false;
+        b.velocity = Vec2::Zero();
+        b.angular_velocity = 0.0;
+      }
+    } else if (!b.awake) {
+      b.awake = true;  // an island with a moving member wakes its sleeping ones
+      b.sleep_time = 0.0;
+    }
+  }
+}
+
+}  // namespace rigidlab
