@@ -6,6 +6,7 @@
 //   2. the error at dt = 1/60 is at most 1.05 × the value stored in stored_errors.csv (a
 //      regression guard; the engine is deterministic for one binary), and not below a fifth of it
 //      (a much smaller error means the problem or the metric changed: update the file on purpose);
+//      stored values under 1e-9 are round-off: the error must only stay under 1e-9;
 //   3. stages: a problem without contacts finds no pairs, one without Lua forces makes no Lua
 //      calls, and a Lua force is called once per evaluation (4 per step with RK4).
 #include <doctest/doctest.h>
@@ -95,8 +96,8 @@ void checkProblem(const std::string& name) {
       const double s = stored->second, e = at60.error.err_linf;
       INFO("err_linf at 1/60 = " << e << ", stored " << s);
       CHECK(std::isfinite(e));
-      if (s < 1e-12) {
-        CHECK(e <= 1e-12);  // round-off: gated by its size, not its digits
+      if (s < 1e-9) {
+        CHECK(e <= 1e-9);  // round-off (or nearly): gated by its size, not its digits
       } else {
         CHECK(e <= 1.05 * s);
         CHECK(e >= 0.2 * s);
