@@ -488,3 +488,32 @@ end
   CHECK(s.exact.error.find("nobody") != std::string::npos);
   CHECK_FALSE(s.paused);  // a broken readout does not stop the simulation
 }
+
+TEST_CASE("session: a save whose PopulateWorld never returns, and an OnStep that never returns") {
+  TempDir dir;
+  const fs::path file = dir.path / "ball.lua";
+  write(file, kBallScene);
+  Session s;
+  s.scene_options.limits.hook_seconds = 0.3;  // the script budgets (engine/lua budget.h), shortened
+  startSession(s, file);
+  REQUIRE(s.scene_loaded);
+  write(file, "function PopulateWorld(world)\n  while true do end\nend\n");
+  // The old world keeps running while the new one is stuck: frames go on.
+  int frames = 0;
+  REQUIRE(pump(s, [&] {
+    advance(s, 1.0 / 60.0);
+    ++frames;
+    return !s.load_error.empty();
+  }, 3000ms));
+  CHECK(frames > 10);
+  CHECK(s.load_error.find("ball.lua:2:") != std::string::npos);
+  CHECK(s.world().findBody("ball").has_value());
+  CHECK(s.world().time() > 0.0);
+
+  write(file, "function PopulateWorld(world)\n  world:add_circle{radius = 1}\nend\n"
+              "function OnStep(world, dt)\n  while true do end\nend\n");
+  REQUIRE(pump(s, [&] { return s.reloads == 1; }));
+  advance(s, 1.0 / 60.0);  // OnStep runs out of budget: paused with the message
+  CHECK(s.paused);
+  CHECK(s.run_error.find("ball.lua:5:") != std::string::npos);
+}

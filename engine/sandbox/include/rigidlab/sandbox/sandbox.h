@@ -8,8 +8,11 @@ namespace rigidlab::sandbox {
 
 struct SandboxOptions {
   std::filesystem::path scene;        // empty: the default scene, with the scene browser open
-  std::optional<int> frames;          // run this many frames, then exit (automation)
-  std::filesystem::path screenshot;   // with `frames`: write a PNG of the last frame here
+  // Run at most this many frames, then exit (automation). The simulation then advances exactly
+  // 1/60 s per frame whatever the machine, so the picture after N frames is reproducible; frames are
+  // still paced in real time, so file edits during the run are seen as a user would see them.
+  std::optional<int> frames;
+  std::filesystem::path screenshot;   // with `frames`: a PNG of the last frame drawn (the Nth, or the one when the window closed)
 };
 
 // Returned by runSandbox when no window can be opened (no display): the caller runs headless.
