@@ -48,9 +48,10 @@ Writes to DIR (default accuracy-report):
   --no-long           skip the long energy runs
   --no-plots          do not run gnuplot
 
-Prints the observed order per problem and integrator beside the expected one. Exit status: 0 if
-every gated expectation holds (orders on smooth and sanity problems), 1 if one fails or a scene
-has an error, 2 for a usage error.
+Prints the observed order per problem and integrator beside the expected one ("?": no fit, the
+sweep stops before the asymptotic range). Exit status: 0 if every gated expectation holds
+(orders on smooth and sanity problems; with --kmax below 8 or --quick, a missing fit does not
+count), 1 if one fails or a scene has an error, 2 for a usage error.
 )";
 
 std::vector<std::string> splitList(const std::string& s) {
@@ -202,7 +203,9 @@ int accuracyCommand(const std::vector<std::string>& argv) {
   int failed = 0;
   try {
     writeCsv(report, out);
-    failed = writeSummary(report, out);
+    // A sweep that stops before k = 8 may not reach the asymptotic range of every integrator (explicit
+    // Euler on the spring needs dt ≤ 1/3840): there "no fit" is reported, not failed.
+    failed = writeSummary(report, out, kmax >= 8);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "accuracy: %s\n", e.what());
     return kExitSceneError;
@@ -221,7 +224,8 @@ int accuracyCommand(const std::vector<std::string>& argv) {
       for (const Row& r : report.rows)
         if (r.problem == &p && r.integrator == i) rows.push_back(&r);
       const Verdict v = judge(p, i, rows);
-      const std::string cell = v.observed + " (" + v.expected + ")" + (v.gated ? (v.pass ? " ok" : " FAIL") : "");
+      const bool counts = v.gated && !v.pass && (kmax >= 8 || !v.inconclusive);
+      const std::string cell = v.observed + " (" + v.expected + ")" + (v.gated ? (v.pass ? " ok" : counts ? " FAIL" : " ?") : "");
       std::printf(" %-26s", cell.c_str());
     }
     std::printf("\n");

@@ -51,6 +51,9 @@ struct Verdict {
   std::string expected;  // "1", "exact", "-"
   bool pass = true;
   bool gated = false;  // counts for the exit status (smooth and sanity problems)
+  // No fit: fewer than 2 runs in the asymptotic window (a failure; with a sweep shorter than the
+  // default one, e.g. --quick, the command reports it without failing).
+  bool inconclusive = false;
   std::string why;     // when it fails
 };
 Verdict judge(const Problem& problem, const std::string& integrator, const std::vector<const Row*>& rows);
@@ -77,8 +80,9 @@ struct ReportInput {
 
 // accuracy.csv; energy_<problem>.csv for the long runs.
 void writeCsv(const ReportInput& in, const std::filesystem::path& dir);
-// summary.md. Returns the number of gated expectations that failed.
-int writeSummary(const ReportInput& in, const std::filesystem::path& dir);
+// summary.md. Returns the number of gated expectations that failed (inconclusive ones only if
+// `strict`).
+int writeSummary(const ReportInput& in, const std::filesystem::path& dir, bool strict = true);
 // plots.gp, then runs gnuplot on it if it is installed: wp_<p>.svg/png, conv_<p>.svg/png,
 // energy_<p>.svg/png. Returns a message if the pictures could not be made.
 std::optional<std::string> writePlots(const ReportInput& in, const std::filesystem::path& dir);

@@ -87,6 +87,7 @@ struct RestFigures {
   double speed_after_settle = 0;         // max speed of any body after settle_time [m/s]
   double jitter_last_second = 0;         // max speed of any body in the last second [m/s]
   double max_angle = 0;                  // max |angle| of any body [rad]
+  double first_drift_time = -1;          // [s] when a box first moved more than 1 cm sideways (−1: never)
   bool finite = true;
 };
 
@@ -107,6 +108,7 @@ RestFigures runRest(World& w, const std::vector<BodyId>& bodies, BodyId top, dou
     for (size_t i = 0; i < bodies.size(); ++i) {
       const Body& b = w.body(bodies[i]);
       f.max_horizontal = std::max(f.max_horizontal, std::abs(b.center.x() - start[i].x()));
+      if (f.first_drift_time < 0 && f.max_horizontal > 0.01) f.first_drift_time = n * kDt;
       f.max_angle = std::max(f.max_angle, std::abs(b.angle));
     }
     if (n == settle) y_settled = w.body(top).center.y();
@@ -186,7 +188,9 @@ CaseResult standing(const std::string& name, const std::string& title, const std
                {"jitter_last_second", f.jitter_last_second, "m/s", ""},
                {"max_penetration", f.max_pen, "m", ""},
                {"final_penetration", f.final_pen, "m", ""},
-               {"max_angle", f.max_angle, "rad", ""}};
+               {"max_angle", f.max_angle, "rad", ""},
+               {"first_drift_over_1cm", f.first_drift_time < 0 ? kNaN : f.first_drift_time, "s",
+                f.first_drift_time < 0 ? "never" : ""}};
   r.pass = f.finite && f.max_horizontal <= 0.01 && f.top_drop_settled < 1e-3 && f.jitter_last_second <= 0.01;
   if (!r.pass)
     r.notes.push_back("sideways drift " + fmt(f.max_horizontal) + " m, sinking after 2 s " + fmt(f.top_drop_settled) +
