@@ -81,7 +81,9 @@ void prepare(WorldImpl& w, Contact& c) {
     if (cp.separation > 0.0) {
       // Speculative point: the bodies may close the gap during the next step, not more.
       cp.target_velocity = -cp.separation / w.dt;
-      if (vn < -w.def.restitution_threshold && c.restitution > 0.0 && vn * w.dt < -cp.separation) {
+      const bool swept = w.ccd_hit[c.a] || w.ccd_hit[c.b];  // put against the wall: the impact is now
+      if (swept && vn < -w.def.restitution_threshold) cp.target_velocity = -c.restitution * vn;
+      if (!swept && vn < -w.def.restitution_threshold && c.restitution > 0.0 && vn * w.dt < -cp.separation) {
         // A bouncing impact: let it happen next step, where restitution is taken at the moment of
         // contact, instead of stopping the body at the surface here.
         cp.normal_mass = cp.tangent_mass = 0.0;

@@ -185,6 +185,27 @@ Manifold collidePolygons(const WorldPolygon& a, const WorldPolygon& b, double ma
   return m;
 }
 
+double separationLowerBound(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb) {
+  constexpr double kAll = std::numeric_limits<double>::infinity();
+  if (a.type == ShapeType::Polygon && b.type == ShapeType::Polygon) {
+    Vec2 va[kMaxPolygonVertices], na[kMaxPolygonVertices], vb[kMaxPolygonVertices], nb[kMaxPolygonVertices];
+    for (size_t i = 0; i < a.vertices.size(); ++i) {
+      va[i] = xa.apply(a.vertices[i]);
+      na[i] = xa.q.apply(a.normals[i]);
+    }
+    for (size_t i = 0; i < b.vertices.size(); ++i) {
+      vb[i] = xb.apply(b.vertices[i]);
+      nb[i] = xb.q.apply(b.normals[i]);
+    }
+    const WorldPolygon pa{va, na, static_cast<int>(a.vertices.size()), a.extent};
+    const WorldPolygon pb{vb, nb, static_cast<int>(b.vertices.size()), b.extent};
+    int edge;
+    return std::max(findMaxSeparation(pa, pb, edge, kAll), findMaxSeparation(pb, pa, edge, kAll));
+  }
+  const Manifold m = collideShapes(a, xa, b, xb, kAll);  // with a circle: one point, the exact distance
+  return m.count > 0 ? m.points[0].separation : kAll;
+}
+
 Manifold collideShapes(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double margin) {
   const bool pa = a.type == ShapeType::Polygon, pb = b.type == ShapeType::Polygon;
   if (pa && pb) return collidePolygons(a, xa, b, xb, margin);

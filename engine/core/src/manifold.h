@@ -43,6 +43,10 @@ Manifold collideCircles(const Shape& a, const Transform& xa, const Shape& b, con
 Manifold collidePolygonAndCircle(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double margin);
 Manifold collidePolygons(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double margin);
 Manifold collidePolygons(const WorldPolygon& a, const WorldPolygon& b, double margin);
+// A lower bound of the distance between two shapes (negative when they overlap): exact for pairs
+// with a circle; for two polygons the largest separation along their face normals (the separating
+// axis test), which never exceeds the true distance. Used by continuous collision detection.
+double separationLowerBound(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb);
 // Dispatches on the shape types; a circle–polygon pair is solved as polygon–circle and flipped.
 Manifold collideShapes(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double margin);
 

@@ -7,6 +7,7 @@ struct WorldImpl;
 
 void integrate(WorldImpl& w, double dt);   // integrator.cpp      origin.md §5
 void guardNonFinite(WorldImpl& w, const char* stage);  // nan_guard.cpp  after integrate and at the end
+void sweepFastBodies(WorldImpl& w);        // continuous.cpp      fast bodies against static ones
 // The linearly implicit Euler velocity change (implicit_solve.cpp) from the forces in w.wrenches,
 // into w.implicit.dv; false (nothing computed) if no active force can be linearised.
 bool implicitVelocityChange(WorldImpl& w, double t0, double h, bool stiffness);

@@ -50,6 +50,8 @@ void World::step(double dt) {
     throw;
   }
   guardNonFinite(w, "integrate");  // before contacts: a non-finite body must not touch others
+  w.ccd_hit.assign(w.bodies.size(), 0);
+  if (w.def.continuous) sweepFastBodies(w);  // origin.md §13: no tunnelling through static bodies
   const auto t1 = Clock::now();
   findPairs(w);  // origin.md §7: all pairs, skipping static–static
   const auto t2 = Clock::now();
@@ -122,6 +124,7 @@ World::World(const WorldDef& def) : impl_(std::make_unique<WorldImpl>()) {
   setStaticFrictionSpeed(def.static_friction_speed);
   setContactMargin(def.contact_margin);
   setSleeping(def.sleeping);
+  setContinuous(def.continuous);
   impl_->def.sleep_linear_speed = requireNonNegative("sleep_linear_speed", def.sleep_linear_speed);
   impl_->def.sleep_angular_speed = requireNonNegative("sleep_angular_speed", def.sleep_angular_speed);
   impl_->def.time_to_sleep = requireNonNegative("time_to_sleep", def.time_to_sleep);
@@ -168,6 +171,8 @@ void World::setSleeping(bool on) {
       b.sleep_time = 0.0;
     }
 }
+
+void World::setContinuous(bool on) { impl_->def.continuous = on; }
 
 void World::wake(BodyId id) {
   WorldImpl& w = *impl_;

@@ -93,6 +93,8 @@ struct WorldImpl {
 
   std::unique_ptr<BroadPhase> broad_phase;
   std::vector<Proxy> proxies;
+  std::vector<uint32_t> statics;  // static body slots (continuous.cpp)
+  std::vector<char> ccd_hit;      // per slot: stopped by continuous collision detection this step
   std::vector<Vec2> world_vertices, world_normals;  // every polygon placed in the world this step
   std::vector<uint32_t> polygon_offset;             // per slot: where its polygon starts in them
   std::vector<BodyPair> pairs;

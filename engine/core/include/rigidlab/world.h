@@ -69,6 +69,10 @@ struct WorldDef {
   // velocities. Off reproduces the thesis, where held bodies creep by their gravity travel.
   bool contact_displacement = true;
   BroadPhaseKind broad_phase = BroadPhaseKind::Grid;
+  // Continuous collision detection of fast bodies against static ones (continuous.cpp): a body
+  // that moves more than half its inner radius in a step is stopped at the first static body on
+  // its way instead of tunnelling through it.
+  bool continuous = true;
   // Sleeping: an island of touching (or spring-linked) bodies whose speeds all stay below these for
   // time_to_sleep stops being simulated until something touches, pushes or edits it.
   bool sleeping = true;
@@ -118,6 +122,7 @@ struct StepStats {
   int bodies = 0, dynamic_bodies = 0, awake_bodies = 0, forces = 0;
   int pairs = 0, contacts = 0, contact_points = 0;
   long force_evaluations = 0;  // calls of Force::evaluate in this step
+  int ccd_sweeps = 0, ccd_hits = 0;  // fast bodies swept against static ones, and those stopped
   double total_ms() const { return integrate_ms + broad_phase_ms + narrow_phase_ms + solve_ms + correct_ms + finish_ms; }
 };
 
@@ -153,6 +158,7 @@ class World {
   void setContactMargin(double distance);
   void setBroadPhase(BroadPhaseKind kind);
   void setSleeping(bool on);  // off wakes every body
+  void setContinuous(bool on);
 
   // --- bodies
   BodyId createBody(const BodyDef& def);  // InputError names the bad field and value
