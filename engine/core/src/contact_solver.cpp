@@ -81,9 +81,12 @@ void prepare(WorldImpl& w, Contact& c) {
     if (cp.separation > 0.0) {
       // Speculative point: the bodies may close the gap during the next step, not more.
       cp.target_velocity = -cp.separation / w.dt;
-      const bool swept = w.ccd_hit[c.a] || w.ccd_hit[c.b];  // put against the wall: the impact is now
-      if (swept && vn < -w.def.restitution_threshold) cp.target_velocity = -c.restitution * vn;
-      if (!swept && vn < -w.def.restitution_threshold && c.restitution > 0.0 && vn * w.dt < -cp.separation) {
+      // A body that would travel more than its inner radius into the other bounces now (from the
+      // gap), so it cannot pass through; so does one that continuous detection put at the wall.
+      const bool fast = w.ccd_hit[c.a] || w.ccd_hit[c.b] ||
+                        -vn * w.dt > std::min(a.shape.inradius, b.shape.inradius);
+      if (fast && vn < -w.def.restitution_threshold) cp.target_velocity = -c.restitution * vn;
+      if (!fast && vn < -w.def.restitution_threshold && c.restitution > 0.0 && vn * w.dt < -cp.separation) {
         // A bouncing impact: let it happen next step, where restitution is taken at the moment of
         // contact, instead of stopping the body at the surface here.
         cp.normal_mass = cp.tangent_mass = 0.0;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "rigidlab/error.h"
@@ -27,6 +28,9 @@ void computeNormals(Shape& s) {
     const Vec2 edge = s.vertices[(i + 1) % n] - s.vertices[i];
     s.normals[i] = Vec2(edge.y(), -edge.x()).normalized();  // right of a CCW edge = outward
   }
+  const Vec2 centroid = computeMass(s, 1.0).center;
+  s.inradius = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < n; ++i) s.inradius = std::min(s.inradius, s.normals[i].dot(s.vertices[i] - centroid));
 }
 
 }  // namespace
@@ -37,6 +41,7 @@ Shape makeCircle(double radius, const Vec2& center) {
   s.radius = requirePositive("radius", radius);
   s.center = requireFinite("center", center);
   s.extent = computeExtent(s);
+  s.inradius = s.radius;
   return s;
 }
 

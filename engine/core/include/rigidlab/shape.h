@@ -29,6 +29,7 @@ struct Shape {
   std::vector<Vec2> vertices;        // polygon corners, counter-clockwise, body coordinates [m]
   std::vector<Vec2> normals;         // outward unit normal of edge i = vertices[i] → vertices[i+1]
   double extent = 0.0;               // largest distance from the body origin to the shape [m] (cached)
+  double inradius = 0.0;             // radius of the largest disc about the centroid inside it [m] (cached)
 };
 
 // Mass properties of a shape of uniform density.
