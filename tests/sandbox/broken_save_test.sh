@@ -29,7 +29,7 @@ grep -q "reload failed: .*scene.lua:1[0-9]: .*populate fails" "$WORK/stderr.txt"
 wait_sandbox
 [ "$SANDBOX_STATUS" -eq 0 ] || fail "exit status $SANDBOX_STATUS"
 [ "$(count_lines ' reloaded ')" -eq 0 ] || fail "a broken scene was swapped in"
-expect_pixel "$WORK/broken.png" 764 308 "$DYNAMIC" "the old world's ball at (2, 1)"
+expect_dynamic "$WORK/broken.png" 764 308 "the old world's ball at (2, 1)"
 expect_pixel "$WORK/broken.png" 764 452 "$BACKGROUND" "no new ball at (2, -1)"
 expect_pixel "$WORK/broken.png" 496 288 "$STATIC" "the old world's static box"
 # The overlay: a dark red panel at the top centre.
@@ -42,7 +42,7 @@ wait_sandbox
 [ "$SANDBOX_STATUS" -eq 0 ] || fail "failing force: exit status $SANDBOX_STATUS"
 grep -q "paused: .*failing_force.lua:9: .*this force fails on purpose" "$WORK/stderr.txt" ||
   fail "no 'paused: …failing_force.lua:9: …' message"
-expect_pixel "$WORK/paused.png" 460 374 "$DYNAMIC" "ball stopped near (-2.5, -0.2)"
+expect_dynamic "$WORK/paused.png" 460 374 "ball stopped near (-2.5, -0.2)"
 expect_pixel "$WORK/paused.png" 554 374 "$BACKGROUND" "ball did not go on to (-1.2, -0.2)"
 read -r r g b <<< "$("$PNG_CHECK" pixel "$WORK/paused.png" 640 12)"
 { [ "$r" -ge 60 ] && [ "$g" -le 40 ] && [ "$b" -le 40 ]; } || fail "no red error overlay after the force failed ($r $g $b)"

@@ -71,7 +71,7 @@ check_picture() {  # IMAGE LABEL
   expect_pixel "$1" 806 382 "$BACKGROUND" "$2: nothing left where the ball was (2.3, -0.3)"
   expect_pixel "$1" 516 514 "$STATIC" "$2: the box, moved to (-2, -2)"
   expect_pixel "$1" 470 205 "$BACKGROUND" "$2: nothing left where the box was (-2.36, 2.15)"
-  expect_pixel "$1" 625 590 "$DYNAMIC" "$2: circle A at (0, -3)"
+  expect_dynamic "$1" 625 590 "$2: circle A at (0, -3)"
   expect_pixel "$1" 840 590 "$BACKGROUND" "$2: circle B at (3, -3) is gone (undo, redo, undo)"
 }
 check_picture "$WORK/final.png" "sandbox"

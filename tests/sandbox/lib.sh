@@ -12,6 +12,7 @@ FAILURES=0
 # Colours of the default palette in a screenshot (core debug_draw.cpp fills over the sandbox's
 # background, renderer.h Palette), 8-bit RGB.
 DYNAMIC="57 98 160"   # dynamic fill (0.25, 0.45, 0.75, α 0.8) over the background
+SLEEPING="42 63 93"   # a dynamic body asleep (0.18, 0.28, 0.42, α 0.8): at rest for 0.5 s
 STATIC="89 97 107"    # static fill (0.35, 0.38, 0.42)
 BACKGROUND="28 31 36" # (0.11, 0.12, 0.14)
 TOLERANCE=12
@@ -78,6 +79,16 @@ expect_pixel() {
   local image=$1 x=$2 y=$3 rgb=$4 what=$5 out
   # shellcheck disable=SC2086
   if ! out=$("$PNG_CHECK" near "$image" "$x" "$y" $rgb "$TOLERANCE"); then fail "$what: $out"; fi
+}
+
+# expect_dynamic IMAGE X Y WHAT: a dynamic body's fill, awake or asleep.
+expect_dynamic() {
+  local out
+  # shellcheck disable=SC2086
+  if ! "$PNG_CHECK" near "$1" "$2" "$3" $DYNAMIC "$TOLERANCE" > /dev/null &&
+     ! out=$("$PNG_CHECK" near "$1" "$2" "$3" $SLEEPING "$TOLERANCE"); then
+    fail "$4: ${out/expected/expected a dynamic body ($DYNAMIC awake) or}"
+  fi
 }
 
 # atomic_write FILE: stdin → FILE by temporary file + rename, as most editors save.

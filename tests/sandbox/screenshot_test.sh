@@ -17,9 +17,9 @@ grep -q "^[0-9]* opened .*shapes.lua" "$WORK/log.txt" || fail "no 'opened' line"
 
 expect_pixel "$shot" 496 288 "$STATIC" "static box at (-2, 1)"
 expect_pixel "$shot" 530 270 "$STATIC" "static box, off centre (-1.53, 1.25)"
-expect_pixel "$shot" 764 308 "$DYNAMIC" "ball at (2, 1), left of its rotation line"
-expect_pixel "$shot" 800 300 "$DYNAMIC" "ball, right part"
-expect_pixel "$shot" 654 518 "$DYNAMIC" "triangle near (0.2, -2.2)"
+expect_dynamic "$shot" 764 308 "ball at (2, 1), left of its rotation line"
+expect_dynamic "$shot" 800 300 "ball, right part"
+expect_dynamic "$shot" 654 518 "triangle near (0.2, -2.2)"
 # Background where the scene has nothing (away from the grid lines at whole metres).
 expect_pixel "$shot" 892 612 "$BACKGROUND" "empty space at (3.5, -3.5)"
 expect_pixel "$shot" 546 540 "$BACKGROUND" "empty space left of the triangle (-1.3, -2.5)"

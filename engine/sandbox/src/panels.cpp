@@ -113,6 +113,9 @@ void worldSection(Session& s) {
   if (ImGui::InputInt("iterations", &iterations) && iterations >= 1 && iterations <= 10000) o.iterations = iterations;
   bool warm = w.settings().warm_starting;
   if (ImGui::Checkbox("warm starting", &warm)) o.warm_starting = warm;
+  ImGui::SameLine();
+  bool sleeping = w.settings().sleeping;
+  if (ImGui::Checkbox("sleeping", &sleeping)) o.sleeping = sleeping;
   applyOverrides(s);
   if (o.any()) {
     ImGui::TextColored(kWarnColor, "changed here: kept across reloads");
@@ -205,7 +208,7 @@ void statisticsWindow(Session& s, PanelState& p, Renderer& r) {
     ImGui::TextColored(kErrorColor, "slower than real time: %.0f%%", 100.0 * ratio / s.loop.time_scale);
   else
     ImGui::Text("sim/real time %.2f   %s", ratio, s.loop.mode == LoopMode::Fixed ? "fixed step" : "variable step");
-  ImGui::Text("bodies %d (%d dynamic)   forces %d", st.bodies, st.dynamic_bodies, st.forces);
+  ImGui::Text("bodies %d (%d dynamic, %d awake)   forces %d", st.bodies, st.dynamic_bodies, st.awake_bodies, st.forces);
   ImGui::Text("pairs %d   contacts %d   points %d", st.pairs, st.contacts, st.contact_points);
   if (const auto& incidents = s.world().incidents(); !incidents.empty()) {
     ImGui::PushTextWrapPos(0.0f);

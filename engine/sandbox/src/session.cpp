@@ -29,7 +29,7 @@ fs::path comparable(const fs::path& p) {
 
 WorldOverrides currentValues(const lua::Scene& scene) {
   const WorldDef& def = scene.world().settings();
-  return {def.gravity, def.integrator, def.iterations, scene.settings().dt, def.warm_starting};
+  return {def.gravity, def.integrator, def.iterations, scene.settings().dt, def.warm_starting, def.sleeping};
 }
 
 void placeCamera(Session& s) {
@@ -225,6 +225,7 @@ void applyOverrides(Session& s) {
     if (o.integrator) w.setIntegrator(*o.integrator);
     if (o.iterations) w.setIterations(*o.iterations);
     if (o.warm_starting) w.setWarmStarting(*o.warm_starting);
+    if (o.sleeping) w.setSleeping(*o.sleeping);
     if (o.dt) s.scene->setDt(*o.dt);
   } catch (const std::exception& e) {
     s.setStatus(std::string("setting refused: ") + e.what());

@@ -37,7 +37,8 @@ struct WorldOverrides {
   std::optional<int> iterations;
   std::optional<double> dt;
   std::optional<bool> warm_starting;
-  bool any() const { return gravity || integrator || iterations || dt || warm_starting; }
+  std::optional<bool> sleeping;
+  bool any() const { return gravity || integrator || iterations || dt || warm_starting || sleeping; }
 };
 
 enum class Tool { Select, Circle, Box, Polygon };
