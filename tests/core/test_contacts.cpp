@@ -334,3 +334,26 @@ TEST_CASE("continuous collision: fast bodies do not tunnel through a thin static
   for (int i = 0; i < 10; ++i) w.step(1.0 / 60.0);
   CHECK(w.body(disc).position().x() > 5.0);
 }
+
+TEST_CASE("mass ratios: heavy boxes on a 1 kg box hold with sub-centimetre penetration (accuracy.md S7)") {
+  for (double heavy : {10.0, 100.0, 1000.0}) {
+    CAPTURE(heavy);
+    World w;
+    w.setSleeping(false);
+    test::addBox(w, 40, 1, {0, -0.5}, true);
+    const BodyId light = test::addBox(w, 1, 1, {0, 0.5});
+    BodyDef d;
+    d.shape = makeBox(1, 1);
+    d.position = {0, 1.5};
+    d.mass = heavy;
+    const BodyId top = w.createBody(d);
+    double worst = 0.0;
+    for (int i = 0; i < 300; ++i) {
+      w.step(1.0 / 60.0);
+      worst = std::max(worst, 1.0 - (w.body(top).position().y() - w.body(light).position().y()));
+    }
+    CHECK(worst < 0.01);                                             // penetration under 1 cm
+    CHECK(w.body(top).position().y() > 1.49);                        // no sinking
+    CHECK(std::abs(w.body(top).velocity.y()) < 1e-3);                // at rest
+  }
+}

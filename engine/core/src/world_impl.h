@@ -100,6 +100,7 @@ struct WorldImpl {
   std::vector<BodyPair> pairs;
   std::vector<Contact> contacts;           // this step's, sorted by (a, b)
   std::vector<uint32_t> solved;            // indices of the contacts the solver works on
+  std::vector<uint32_t> island_order;      // the solver's constraints grouped by island
   std::vector<Contact> previous_contacts;  // last step's, for warm starting
 
   // Sleeping (sleep.cpp): island of each body slot at the last update, and the wake-up call that
