@@ -43,6 +43,8 @@ Writes to DIR (default accuracy-report):
   --kmax K            finest step 1/30 * 2^-K (default 8, at most 12)
   --repeats R         timed repeats per run (default 20; fewer once 0.5 s has been spent on the
                       configuration, at least 3; one run if a run takes over 2 s)
+  --budget S          seconds of timing per run before repeats stop (default 0.5); raise it
+                      for steadier minimums on a busy machine
   --quick             k = 0..5, 3 repeats, no long runs: a fast look
   --no-timing         error passes only (no wall times, no work-precision pictures)
   --no-long           skip the long energy runs
@@ -96,7 +98,7 @@ class Progress {
 }  // namespace
 
 int accuracyCommand(const std::vector<std::string>& argv) {
-  const Args args("accuracy", argv, {"out", "scenes", "integrators", "kmax", "repeats"},
+  const Args args("accuracy", argv, {"out", "scenes", "integrators", "kmax", "repeats", "budget"},
                   {"quick", "no-timing", "no-long", "no-plots"});
   if (args.help()) {
     std::fputs(kHelp, stdout);
@@ -110,6 +112,10 @@ int accuracyCommand(const std::vector<std::string>& argv) {
   timing.max_repeats = static_cast<int>(args.integer("repeats", 1).value_or(quick ? 3 : 20));
   timing.min_repeats = std::min(timing.min_repeats, timing.max_repeats);
   if (quick) timing.budget_s = 0.1;
+  if (const auto budget = args.number("budget")) {
+    if (!(*budget > 0)) throw UsageError("accuracy: --budget must be > 0");
+    timing.budget_s = *budget;
+  }
   const bool timed = !args.flag("no-timing");
   const bool long_runs = !quick && !args.flag("no-long");
   const std::filesystem::path out = args.value("out").value_or("accuracy-report");

@@ -520,7 +520,7 @@ std::optional<std::string> writePlots(const ReportInput& in, const std::filesyst
       }
       if (any_unstable)
         wplot += "NaN with points pt 6 lc rgb '#555555' title 'unstable (time until stopped): right edge', \\\n  ";
-      wplot += "NaN with lines lc rgb '#ffffff' title 'one marker per dt, halving', \\\n  ";
+      wplot += "NaN with lines lc rgb '#ffffff' title 'one marker per dt', \\\n  ";
       wplot.resize(wplot.size() - 6);
       wp << wplot << "\n";
       terminals("wp_" + p->name, wp.str());
@@ -535,7 +535,7 @@ std::optional<std::string> writePlots(const ReportInput& in, const std::filesyst
         std::ostringstream en;
         en << "set title " << gpString(p->title + ": energy error over " + num(*p->long_run) + " s at dt = 1/60 s") << "\n"
            << "set xlabel 't [s]'\nset ylabel '|E/E_0 − 1|'\nunset logscale\nset logscale y\nset format x '%g'\n"
-           << "set autoscale xy\nset xrange [0:" << num(*p->long_run) << "]\nset yrange [1e-16<*:*]\nset key bottom right\n";
+           << "set autoscale xy\nset xrange [0:" << num(*p->long_run) << "]\nset yrange [1e-16<*:*]\nset key inside bottom right Left reverse width 0\n";
         std::string eplot = "plot ";
         for (size_t ii = 0; ii < runs.size(); ++ii) {
           const std::string& i = runs[ii]->integrator;

@@ -151,6 +151,29 @@ TEST_CASE("reference problems: every file is gated above, with stored errors for
   }
 }
 
+TEST_CASE("invariants: momentum under pair forces and impacts, the orbit's angular momentum, impact algebra") {
+  const double dt = sweepDt(1);
+  const auto run = [&](const std::string& name, const std::string& integrator) {
+    const Problem p = loadProblem(problemDirectory() / (name + ".lua"));
+    return errorPass(p, *rigidlab::parseIntegrator(integrator), dt, p.t_end, false);
+  };
+  for (const std::string& integrator : integrators()) {
+    CAPTURE(integrator);
+    // Pair forces and contact impulses are equal and opposite: momentum to round-off (accuracy.md §3.5, §3.10).
+    for (const char* name : {"two_body_spring", "collision_1d", "collision_oblique", "collision_friction"}) {
+      CAPTURE(name);
+      CHECK(run(name, integrator).mom_err <= 1e-12);
+    }
+    // Head-on impacts: the velocities after the impact are Newton's law to round-off.
+    CHECK(run("collision_1d", integrator).vel_err_final <= 1e-9);
+  }
+  // Semi-implicit Euler keeps a central force's angular momentum exactly (accuracy.md §3.6):
+  // L' = x' × v' = (x + h v') × v' = x × v + h x × a(x) = x × v.
+  const ErrorPass semi = run("kepler", "semi_implicit_euler");
+  CHECK(semi.angmom_err <= 1e-12);
+  CHECK(run("kepler", "euler").angmom_err > 1e-3);  // control: explicit Euler does not
+}
+
 TEST_CASE("Lua forces: one call per evaluation, four per step with RK4, one with the Euler variants") {
   const Problem kepler = loadProblem(problemDirectory() / "kepler.lua");
   for (const auto& [name, per_step] : {std::pair{"rk4", 4}, {"semi_implicit_euler", 1}, {"euler", 1}}) {
