@@ -2,7 +2,7 @@
 -- First impact at t1 = √(2 h0/g) = 0.4516007558 s at 4.4286905514 m/s; after bounce n the apex is
 -- e^{2n} h0 (0.64 m after the first); the second impact is at 1.1741619650 s. Collisions are
 -- handled once per step, so the error is O(h) even where free flight is exact (RK4).
-scene = { title = "Bouncing ball, e = 0.8", dt = 1 / 60, duration = 2,
+scene = { sleeping = false, title = "Bouncing ball, e = 0.8", dt = 1 / 60, duration = 2,
           camera = { center = {0, 0.6}, height = 1.6 } }
 
 local g, h0, e, r = 9.80665, 1.0, 0.8, 0.1

@@ -5,7 +5,7 @@
 --   e = 0:   v1' = v2' = −0.25          (3.375 J lost)
 -- One lane per restitution, 4 m apart; in each the discs (r = 0.5 m) touch at x = 0 at t = 0.5 s.
 -- The impulse algebra is exact; the position error comes from handling the impact once per step.
-scene = { title = "Head-on collisions, e = 1, 0.5, 0", gravity = {0, 0}, dt = 1 / 60, duration = 1.5,
+scene = { sleeping = false, title = "Head-on collisions, e = 1, 0.5, 0", gravity = {0, 0}, dt = 1 / 60, duration = 1.5,
           camera = { center = {0, 4}, height = 12 } }
 
 local m1, m2, v1, v2, r, tc = 1.0, 3.0, 2.0, -1.0, 0.5, 0.5

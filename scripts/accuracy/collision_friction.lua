@@ -6,7 +6,7 @@
 --   sticking (ω_B = 0.5 rad/s): slip 1 m/s needs 1/6 N·s < 0.5, so the slip stops:
 --     vA = (−1, −1/6), vB = (0, 1/6), ωA = −1/6, ωB = 1/3
 -- The sliding result does not depend on the inertia; the sticking one does.
-scene = { title = "Frictional impacts (thesis experiment 1 and a sticking variant)", gravity = {0, 0},
+scene = { sleeping = false, title = "Frictional impacts (thesis experiment 1 and a sticking variant)", gravity = {0, 0},
           dt = 1 / 60, duration = 2, camera = { center = {2, 5}, height = 20 } }
 
 local r, m, I, e, mu, tc = 2.0, 1.0, 2.0, 1.0, 0.5, 1.0

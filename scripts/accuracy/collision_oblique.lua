@@ -4,7 +4,7 @@
 --   e = 1:   vB' = (0.5, 0.866025), vA' = (1.5, −0.866025), 2 J kept, vA' ⊥ vB'
 --   e = 0.5: vB' = (0.875, 0.649519), vA' = (1.125, −0.649519), 1.4375 J kept
 -- No friction, so the spins stay 0. Two lanes 6 m apart; the impacts are at t = 0.5 s.
-scene = { title = "Oblique collisions, e = 1 and 0.5", gravity = {0, 0}, dt = 1 / 60, duration = 1.5,
+scene = { sleeping = false, title = "Oblique collisions, e = 1 and 0.5", gravity = {0, 0}, dt = 1 / 60, duration = 1.5,
           camera = { center = {0, 3}, height = 12 } }
 
 local m, r, speed, tc = 1.0, 1.0, 2.0, 0.5

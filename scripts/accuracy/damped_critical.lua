@@ -5,7 +5,7 @@
 --   ζ > 1: x = A e^{r₁t} + B e^{r₂t},  r₁,₂ = −ω₀(ζ ∓ √(ζ² − 1)),  B = (v0 − r₁x0)/(r₂ − r₁),  A = x0 − B
 -- The damping is the spring's own (along its axis), so an integrator that treats springs and
 -- dampers implicitly treats this one so.
-scene = { title = "Spring–mass, critically damped (ζ = 1)", gravity = {0, 0}, dt = 1 / 60, duration = 2,
+scene = { sleeping = false, title = "Spring–mass, critically damped (ζ = 1)", gravity = {0, 0}, dt = 1 / 60, duration = 2,
           camera = { center = {0, 0}, height = 0.5 } }
 
 local m, k, x0, v0, zeta = 1.0, 4 * math.pi ^ 2, 0.1, 0.0, 1

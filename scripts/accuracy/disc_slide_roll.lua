@@ -2,7 +2,7 @@
 -- r = 0.5 m, v0 = 6 m/s, ω0 = 0, μ = 0.3. Friction gives v = v0 − μ g t and ω r = 2 μ g t (ω < 0,
 -- clockwise, for motion to the right) until rolling starts at t* = v0/(3 μ g) = 0.6798108087 s with
 -- v_f = 2 v0/3 = 4 m/s and |ω_f| = v_f/r = 8 rad/s; 6 J of the 18 J are lost to friction.
-scene = { title = "Disc: sliding, then rolling", dt = 1 / 60, duration = 2,
+scene = { sleeping = false, title = "Disc: sliding, then rolling", dt = 1 / 60, duration = 2,
           camera = { center = {5, 0}, height = 6 } }
 
 local g, m, r, v0, mu = 9.80665, 1.0, 0.5, 6.0, 0.3

@@ -2,7 +2,7 @@
 -- rest; tan 30° = 0.577 > μ, so it slides with a = g (sin θ − μ cos θ) = 3.2047633948 m/s² and
 -- s(t) = ½ a t²: s(2) = 6.4095267896 m down the slope. Contacts are handled once per step, so the
 -- error is O(h) whatever the integrator (semi-implicit Euler ideally ½ a t (t + h)).
-scene = { title = "Block on a 30° incline, μ = 0.2", dt = 1 / 60, duration = 2,
+scene = { sleeping = false, title = "Block on a 30° incline, μ = 0.2", dt = 1 / 60, duration = 2,
           camera = { center = {0, 0}, height = 12 } }
 
 local g, theta, mu = 9.80665, math.rad(30), 0.2

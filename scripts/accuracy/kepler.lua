@@ -6,7 +6,7 @@
 -- Invariants: energy −GM m/(2a) = −0.19739208802178715 J, angular momentum m √(GM a (1 − e²)) =
 -- 0.5026548245743668 kg·m²/s. The world does not know the potential of a Lua force, so the
 -- `accuracy` table gives the energy.
-scene = { title = "Kepler orbit (Lua force)", gravity = {0, 0}, dt = 1 / 60, duration = 10,
+scene = { sleeping = false, title = "Kepler orbit (Lua force)", gravity = {0, 0}, dt = 1 / 60, duration = 10,
           camera = { center = {-0.6, 0}, height = 2 } }
 
 local a, e, P = 1.0, 0.6, 10.0

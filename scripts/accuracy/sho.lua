@@ -2,7 +2,7 @@
 -- m = 1 kg, k = 4π² N/m (1 Hz), x0 = 0.1 m, v0 = 0, T = 10.1 s (off the special phases where
 -- semi-implicit Euler's final-time error looks second order). Exact: x(10.1) = 0.0809016994374951.
 -- The spring runs from a fixed anchor at the origin with rest length 0, so F = −k x in the plane.
-scene = { title = "Spring–mass (undamped)", gravity = {0, 0}, dt = 1 / 60, duration = 10.1,
+scene = { sleeping = false, title = "Spring–mass (undamped)", gravity = {0, 0}, dt = 1 / 60, duration = 10.1,
           camera = { center = {0, 0}, height = 0.5 } }
 
 local m, k, x0 = 1.0, 4 * math.pi ^ 2, 0.1

@@ -6,7 +6,7 @@
 -- The force is a Lua force with `duration = 1.04`: the core splits the straddling step at the end
 -- time, so RK4 stays exact (piecewise constant force) and the Euler variants keep their
 -- ±½(F/m) t h error. Compare time_limited_naive.lua, which switches the force off itself.
-scene = { title = "Time-limited force (duration)", gravity = {0, 0}, dt = 1 / 60, duration = 2,
+scene = { sleeping = false, title = "Time-limited force (duration)", gravity = {0, 0}, dt = 1 / 60, duration = 2,
           camera = { center = {4, 0}, height = 4 } }
 
 local F, m, t_off = 10.0, 2.0, 1.04

@@ -3,7 +3,7 @@
 -- through `duration`. The integrator does not know the force has a discontinuity, so a step that
 -- contains it sees the wrong force for part of the step and every integrator, RK4 included, is
 -- first order. Shown in the report beside the split version.
-scene = { title = "Time-limited force (switched in evaluate)", gravity = {0, 0}, dt = 1 / 60, duration = 2,
+scene = { sleeping = false, title = "Time-limited force (switched in evaluate)", gravity = {0, 0}, dt = 1 / 60, duration = 2,
           camera = { center = {4, 0}, height = 4 } }
 
 local F, m, t_off = 10.0, 2.0, 1.04

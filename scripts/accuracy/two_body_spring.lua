@@ -3,7 +3,7 @@
 -- 11.5470053838 rad/s. The separation is s(t) = 1 + 0.2 cos ωt about the fixed centre of mass
 -- x_cm = 0.9 m: x1 = x_cm − (m2/M) s, x2 = x_cm + (m1/M) s; x1(1) = 0.0714139893, x2(1) = 1.1761953369.
 -- Energy 2 J; the pair forces cancel, so total momentum stays 0 with every integrator.
-scene = { title = "Two-body spring", gravity = {0, 0}, dt = 1 / 60, duration = 5,
+scene = { sleeping = false, title = "Two-body spring", gravity = {0, 0}, dt = 1 / 60, duration = 5,
           camera = { center = {0.6, 0}, height = 2 } }
 
 local m1, m2, k, L0, s0 = 1.0, 3.0, 100.0, 1.0, 1.2
