@@ -53,9 +53,26 @@ class ProblemScript {
     lua_setglobal(L_, "require");
     lua_pushcfunction(L_, [](lua_State*) -> int { return 0; });
     lua_setglobal(L_, "print");
+    // A budget of instructions per call (the file's main chunk, each energy call), so a script that
+    // never returns is an error here as it is in the scene's own state.
+    lua_sethook(L_, [](lua_State* L, lua_Debug*) {
+      lua_getfield(L, LUA_REGISTRYINDEX, "rigidlab.accuracy.ticks");
+      const lua_Integer ticks = lua_tointeger(L, -1) + 1;
+      lua_pop(L, 1);
+      lua_pushinteger(L, ticks);
+      lua_setfield(L, LUA_REGISTRYINDEX, "rigidlab.accuracy.ticks");
+      if (ticks > kTickBudget) luaL_error(L, "ran for more than %d million instructions", static_cast<int>(kTickBudget));
+    }, LUA_MASKCOUNT, 1000000);
+    resetBudget();
     if (luaL_loadbuffer(L_, source.data(), source.size(), ("@" + name).c_str()) != LUA_OK ||
         lua_pcall(L_, 0, 0, 0) != LUA_OK)
       throw std::runtime_error(popError());
+  }
+  static constexpr lua_Integer kTickBudget = 100;  // × 1e6 instructions (about 0.3 s)
+
+  void resetBudget() {
+    lua_pushinteger(L_, 0);
+    lua_setfield(L_, LUA_REGISTRYINDEX, "rigidlab.accuracy.ticks");
   }
   ~ProblemScript() { lua_close(L_); }
   ProblemScript(const ProblemScript&) = delete;
@@ -79,6 +96,7 @@ class ProblemScript {
   }
 
   double energy(const World& world, double t) {
+    resetBudget();
     pushAccuracyField("energy");
     lua_createtable(L_, 0, 4);
     for (const BodyId id : world.bodyIds()) {
@@ -265,6 +283,13 @@ Problem loadProblem(const std::filesystem::path& file) {
   p.file = file;
   p.name = file.stem().string();
   const std::string shown = file.lexically_normal().string();
+  // The scene itself first: its errors (syntax, bad options, PopulateWorld) are reported by the
+  // scene loader, under the scene's own limits.
+  try {
+    lua::Scene::loadFile(file);
+  } catch (const lua::SceneError& e) {
+    throw std::runtime_error(e.what());
+  }
   p.script = std::make_shared<ProblemScript>(readFile(file), shown);
   lua_State* L = p.script->L();
   lua_getglobal(L, "accuracy");

@@ -248,5 +248,9 @@ TEST_CASE("problem files: a scene without the accuracy table or with a bad field
   CHECK(ok.expectedFor("rk4").exact);
   CHECK(ok.expectedFor("euler").order == 2.0);
   CHECK(ok.expectedFor("semi_implicit_euler").order == 1.0);
+  // An energy function that never returns is stopped by an instruction budget.
+  const Problem spin = loadProblem(write("spin.lua", body + "accuracy = { t_end = 1, energy = function() while true do end end }\n"));
+  rigidlab::World world;
+  CHECK_THROWS_WITH_AS(spin.energyOf(world, 0.0), doctest::Contains("million instructions"), std::runtime_error);
   std::filesystem::remove_all(dir);
 }
