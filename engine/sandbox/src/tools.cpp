@@ -179,8 +179,11 @@ bool handleKey(Session& s, const SDL_KeyboardEvent& key) {
     case SDLK_F1: s.show_help = !s.show_help; break;
     case SDLK_SPACE: setPaused(s, !s.paused); break;
     case SDLK_n: stepOnce(s); break;
-    case SDLK_r: requestLoad(s, s.file, LoadPurpose::Reset); break;
-    case SDLK_F5: requestLoad(s, s.file, LoadPurpose::Reload); break;
+    case SDLK_r:
+    case SDLK_F5:
+      if (s.file.empty()) s.setStatus("no scene file: open one with Ctrl+O");
+      else requestLoad(s, s.file, k == SDLK_r ? LoadPurpose::Reset : LoadPurpose::Reload);
+      break;
     case SDLK_1: selectTool(s, Tool::Select); break;
     case SDLK_2: selectTool(s, Tool::Circle); break;
     case SDLK_3: selectTool(s, Tool::Box); break;
