@@ -271,6 +271,7 @@ CaseResult damperCase(bool monotone_rule) {
         v_prev = v;
       }
       row.push_back(fmt(factor) + (ok ? "" : " !"));
+      if (!monotone_rule) r.figures.push_back({name + "_first_step_factor_at_" + fmt(q), factor, "", ""});
       if (!ok) {
         pass = false;
         r.notes.push_back(name + " at b·dt/m = " + fmt(q) + ": first-step factor " + fmt(factor) +
