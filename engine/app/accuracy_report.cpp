@@ -504,7 +504,7 @@ std::optional<std::string> writePlots(const ReportInput& in, const std::filesyst
          << "set xlabel " << gpString("error: max ‖p − p_{exact}‖ / " + num(p->reference_length) + " m") << "\n"
          << "set ylabel 'wall time per run, min of repeats [s]'\nset logscale xy\n"
          << "set xrange [" << num(xlo) << ':' << num(xhi) << "]\nset yrange [" << num(wmin / 3) << ':'
-         << num(wmax * 3) << "]\nset key outside right top Left reverse width -9 samplen 2.5\n";
+         << num(wmax * 3) << "]\nset key outside right top Left reverse width 0 samplen 2.5\n";
       std::string wplot = "plot ";
       for (size_t ii = 0; ii < in.integrators.size(); ++ii) {
         const std::string& i = in.integrators[ii];

@@ -154,7 +154,9 @@ function ForceHandle:remove() end
 ---@field gravity rigidlab.Vec2 m/s², default (0, −9.80665) (read/write)
 ---@field integrator "euler"|"semi_implicit_euler"|"rk4"|"implicit_euler" (read/write)
 ---@field dt number step size, s (read/write)
----@field iterations integer contact solver iterations (read/write)
+---@field solver "auto"|"sequential_impulses"|"soft_step" contact solver (read/write); see SceneSettings
+---@field iterations integer sequential impulses: velocity passes per step (read/write)
+---@field substeps integer soft step: sub-steps per step (read/write)
 ---@field sleeping boolean whether still islands fall asleep (read/write; false wakes everything)
 ---@field time number simulated time, s (read only)
 ---@field step_count integer steps taken (read only)
@@ -235,10 +237,13 @@ function Draw:text(position, text, color) end
 ---@field gravity? rigidlab.VecLike default {0, -9.80665}
 ---@field dt? number default 1/60
 ---@field integrator? "euler"|"semi_implicit_euler"|"rk4"|"implicit_euler" default "rk4"
----@field iterations? integer default 10
+---@field solver? "auto"|"sequential_impulses"|"soft_step" default "auto": islands of fewer than 256 contact points by sequential impulses (exact impacts, rigid stacks), larger piles by the soft step (sub-stepped soft contacts, which keep them standing)
+---@field iterations? integer sequential impulses: velocity passes per step, default 10
+---@field substeps? integer soft step: sub-steps per step, 1 to 64, default 8
 ---@field sleeping? boolean default true: islands that stay still for 0.5 s stop being simulated
 ---@field duration? number length of a headless run, s, default 10
 ---@field camera? {center?: rigidlab.VecLike, height?: number} initial sandbox view, metres
+---@field memory_limit? number MiB the scene's Lua may allocate, at most the host's cap (256 by default)
 
 ---@type rigidlab.SceneSettings
 scene = {}

@@ -20,8 +20,11 @@ struct ContactPoint {
   double overlap_time = 0.0;      // how long the point has overlapped this step [s] (position_correction.cpp)
   bool persisted = false;         // the same features touched in the previous step
   double friction = 0.0;          // f_s or f_d, chosen from the slip at the start of the step
-  double normal_impulse = 0.0;    // accumulated, ≥ 0 [N·s]
+  double normal_impulse = 0.0;    // accumulated, ≥ 0 [N·s]; the next step starts from it (the soft
+                                  //   step's is that of its last sub-step)
   double tangent_impulse = 0.0;   // accumulated, |·| ≤ friction · normal_impulse [N·s]
+  double step_normal_impulse = 0.0;   // what the step applied in all [N·s] (World::contacts)
+  double step_tangent_impulse = 0.0;
   Vec2 local_a = Vec2::Zero();    // the point on A's surface, A's body coordinates (position pass)
   Vec2 local_b = Vec2::Zero();    // the point on B's surface, B's body coordinates
 };
@@ -62,6 +65,52 @@ struct SolverContact {
 
 struct SolverBody {  // velocity and inverse mass of a body, as plain doubles
   double vx, vy, w, im, ii;
+};
+
+// The soft step's working copies (soft_step.cpp). Positions are tracked relative to the state in
+// which the contacts were found, so that a point's separation can be updated without collision
+// detection: s = s₀ + (Δc_B + q_B r_B − Δc_A − q_A r_A)·n with the normal held fixed.
+struct SoftBody {
+  double vx, vy, w;    // velocity
+  double dx, dy;       // centre minus the centre at detection [m]
+  double qc, qs;       // rotation since detection (cos, sin)
+  double im, ii;       // inverse mass and inertia; 0 for static and sleeping bodies
+};
+
+struct SoftKick {  // a velocity change of a body
+  double vx, vy, w;
+};
+
+// What every pass reads and writes: 232 bytes a contact, so a pass over a hundred-row pyramid
+// (11 000 contacts) streams 2.5 MB.
+struct SoftPoint {
+  double rax, ray, rbx, rby;  // anchors: the point from each centre at detection [m]
+  double base;                // separation at detection − (r_B − r_A)·n [m]
+  double k;                   // K = 1/m_n = 1/m_A + 1/m_B + (r_A×n)²/I_A + (r_B×n)²/I_B
+  double tangent_mass, friction;
+  double pn, pt;              // impulses of the current sub-step, warm-started [N·s]
+};
+
+struct SoftContact {
+  uint32_t a, b;
+  uint8_t count;
+  bool block;   // two points solved together: K = [[p[0].k, k12], [k12, p[1].k]]
+  bool acted;   // some impulse was non-zero during the step
+  bool bounce;  // restitution > 0: record impact speeds
+  double nx, ny;
+  double bias_rate, bias_floor;  // softness: push velocity = max(β s, floor) (soft_step.cpp)
+  double g[2];                   // compliance γ of each point when soft
+  double k12;
+  SoftPoint p[2];
+};
+
+// Per contact, touched once per sub-step or less: totals for reports and restitution.
+struct SoftTally {
+  double total_n[2], total_t[2];  // impulses applied during the step [N·s]
+  double approach[2];             // normal velocity when the point first pushed (< 0 closing) [m/s]
+  double kick[2];                 // normal velocity the step's forces add per sub-step [m/s]
+  int impact[2];                  // sub-step of that first push, −1 before it
+  double restitution;
 };
 
 }  // namespace rigidlab

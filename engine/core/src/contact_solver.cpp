@@ -248,6 +248,51 @@ void convergeSmallIslands(WorldImpl& w, std::vector<SolverBody>& bodies, std::ve
   }
 }
 
+// Which contacts each solver takes. Only contacts that touch an awake dynamic body are solved (the
+// others keep their impulses). With ContactSolver::Auto, islands (awake bodies joined by those
+// contacts; static and sleeping bodies do not join them) of at least soft_step_points contact
+// points go to the soft step: sequential impulses cannot carry a pile of more than about 50 rows,
+// while small islands are solved exactly by them (mass ratios, impacts, Newton's cradle).
+void chooseSolvers(WorldImpl& w) {
+  w.solved.clear();
+  w.soft_solved.clear();
+  const ContactSolver mode = w.def.contact_solver;
+  auto& parent = w.island_parent;
+  auto& points = w.island_points;
+  if (mode == ContactSolver::Auto) {
+    parent.resize(w.bodies.size());
+    for (uint32_t i = 0; i < parent.size(); ++i) parent[i] = i;
+    points.assign(w.bodies.size(), 0);
+  }
+  for (uint32_t k = 0; k < w.contacts.size(); ++k) {
+    const Contact& c = w.contacts[k];
+    const bool a = w.isActive(c.a), b = w.isActive(c.b);
+    if (!a && !b) continue;
+    w.solved.push_back(k);
+    if (mode != ContactSolver::Auto) continue;
+    if (a && b) {
+      const uint32_t ra = findRoot(parent, c.a), rb = findRoot(parent, c.b);
+      parent[std::max(ra, rb)] = std::min(ra, rb);
+    }
+  }
+  if (mode == ContactSolver::SequentialImpulses) return;
+  if (mode == ContactSolver::SoftStep) {
+    w.soft_solved.swap(w.solved);
+    return;
+  }
+  const auto islandOf = [&](const Contact& c) { return findRoot(parent, w.isActive(c.a) ? c.a : c.b); };
+  for (uint32_t k : w.solved) points[islandOf(w.contacts[k])] += w.contacts[k].count;
+  size_t kept = 0;
+  for (uint32_t k : w.solved) {
+    if (points[islandOf(w.contacts[k])] >= static_cast<uint32_t>(w.def.soft_step_points)) {
+      w.soft_solved.push_back(k);
+    } else {
+      w.solved[kept++] = k;
+    }
+  }
+  w.solved.resize(kept);
+}
+
 SolverContact compact(const Contact& c) {
   SolverContact s;
   s.a = c.a;
@@ -281,10 +326,9 @@ void solveContacts(WorldImpl& w) {
     w.solve_start_velocity[i] = w.bodies[i].velocity;
     w.solve_start_angular_velocity[i] = w.bodies[i].angular_velocity;
   }
-  // Only contacts that touch an awake dynamic body are solved; the others keep their impulses.
-  w.solved.clear();
-  for (uint32_t k = 0; k < w.contacts.size(); ++k)
-    if (w.isActive(w.contacts[k].a) || w.isActive(w.contacts[k].b)) w.solved.push_back(k);
+  chooseSolvers(w);
+  softStep(w);
+  if (w.solved.empty()) return;
   for (uint32_t k : w.solved) prepare(w, w.contacts[k]);
 
   auto& bodies = w.solver_velocities;
@@ -317,8 +361,8 @@ void solveContacts(WorldImpl& w) {
   for (size_t k = 0; k < constraints.size(); ++k) {
     Contact& c = w.contacts[w.solved[k]];
     for (int i = 0; i < c.count; ++i) {
-      c.points[i].normal_impulse = constraints[k].p[i].pn;
-      c.points[i].tangent_impulse = constraints[k].p[i].pt;
+      c.points[i].normal_impulse = c.points[i].step_normal_impulse = constraints[k].p[i].pn;
+      c.points[i].tangent_impulse = c.points[i].step_tangent_impulse = constraints[k].p[i].pt;
     }
   }
   for (size_t i = 0; i < n; ++i) {

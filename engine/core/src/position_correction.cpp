@@ -50,7 +50,8 @@ double invMass(const WorldImpl& w, uint32_t i) { return w.isActive(i) ? w.bodies
 double invInertia(const WorldImpl& w, uint32_t i) { return w.isActive(i) ? w.bodies[i].inv_inertia : 0.0; }
 
 void linearProjection(WorldImpl& w) {
-  for (const Contact& c : w.contacts) {
+  for (uint32_t k : w.solved) {
+    const Contact& c = w.contacts[k];
     Body& a = w.bodies[c.a];
     Body& b = w.bodies[c.b];
     const double ima = invMass(w, c.a), imb = invMass(w, c.b);
@@ -86,7 +87,8 @@ void nonlinearGaussSeidel(WorldImpl& w) {
   constexpr double kMaxCorrection = 0.2;  // m per point and pass, so a deep overlap separates gradually
   for (int it = 0; it < w.def.position_iterations; ++it) {
     double deepest = 0.0;
-    for (const Contact& c : w.contacts) {
+    for (uint32_t k : w.solved) {
+      const Contact& c = w.contacts[k];
       Body& a = w.bodies[c.a];
       Body& b = w.bodies[c.b];
       const double ima = invMass(w, c.a), imb = invMass(w, c.b), iia = invInertia(w, c.a), iib = invInertia(w, c.b);
@@ -118,7 +120,8 @@ void applyContactDisplacement(WorldImpl& w) {
   // Impulse-weighted overlap time per body.
   w.overlap_time.assign(w.bodies.size(), 0.0);
   w.overlap_weight.assign(w.bodies.size(), 0.0);
-  for (const Contact& c : w.contacts) {
+  for (uint32_t k : w.solved) {
+    const Contact& c = w.contacts[k];
     for (int i = 0; i < c.count; ++i) {
       const ContactPoint& cp = c.points[i];
       const double p = cp.normal_impulse;
@@ -148,7 +151,8 @@ void correctPositions(WorldImpl& w) {
     w.correction_start[i] = w.bodies[i].center;
     w.correction_start_angle[i] = w.bodies[i].angle;
   }
-  if (w.def.contact_displacement && !w.contacts.empty()) applyContactDisplacement(w);
+  if (w.solved.empty()) return;  // no contacts, or all of them solved by the soft step
+  if (w.def.contact_displacement) applyContactDisplacement(w);
   switch (w.def.position_correction) {
     case PositionCorrection::LinearProjection:
       linearProjection(w);

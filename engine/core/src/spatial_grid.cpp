@@ -83,7 +83,11 @@ void GridBroadPhase::findPairs(std::span<const Proxy> proxies, std::vector<BodyP
     if (!p.active) continue;
     const double x0 = std::floor(p.aabb.lower.x() * inv), x1 = std::floor(p.aabb.upper.x() * inv);
     const double y0 = std::floor(p.aabb.lower.y() * inv), y1 = std::floor(p.aabb.upper.y() * inv);
-    if ((x1 - x0 + 1) * (y1 - y0 + 1) > kLargeCells) {
+    // A box of many cells, or so far out that its cell numbers would not fit an int64 (a body
+    // at 1e30 m: converting that double is undefined behaviour), is tested against all others.
+    constexpr double kFar = 1e15;
+    const bool far = !(std::abs(x0) < kFar && std::abs(x1) < kFar && std::abs(y0) < kFar && std::abs(y1) < kFar);
+    if (far || (x1 - x0 + 1) * (y1 - y0 + 1) > kLargeCells) {
       large_.push_back(i);
       is_large_[i] = 1;
       continue;

@@ -13,8 +13,9 @@ void sweepFastBodies(WorldImpl& w);        // continuous.cpp      fast bodies ag
 bool implicitVelocityChange(WorldImpl& w, double t0, double h, bool stiffness);
 void findPairs(WorldImpl& w);              // broad_phase.cpp     origin.md §7
 void narrowPhase(WorldImpl& w);            // narrow_phase.cpp    origin.md §7
-void solveContacts(WorldImpl& w);          // contact_solver.cpp  origin.md §8–10
-void correctPositions(WorldImpl& w);       // position_correction.cpp  origin.md §9
+void solveContacts(WorldImpl& w);          // contact_solver.cpp  origin.md §8–10, calls softStep
+void softStep(WorldImpl& w);               // soft_step.cpp       the contacts in w.soft_solved
+void correctPositions(WorldImpl& w);       // position_correction.cpp  origin.md §9, the contacts in w.solved
 void updateSleep(WorldImpl& w);            // sleep.cpp           islands and sleeping
 void expireForces(WorldImpl& w);           // world.cpp           origin.md §6
 

@@ -57,9 +57,9 @@ void World::step(double dt) {
   const auto t2 = Clock::now();
   narrowPhase(w);  // origin.md §7: manifolds with feature ids
   const auto t3 = Clock::now();
-  solveContacts(w);  // origin.md §8–10: sequential impulses, restitution, friction
+  solveContacts(w);  // origin.md §8–10: sequential impulses; large islands by the soft step
   const auto t4 = Clock::now();
-  correctPositions(w);  // origin.md §9: penetration removal
+  correctPositions(w);  // origin.md §9: penetration removal (the soft step's islands need none)
   guardNonFinite(w, "the contact solve");
   const auto t5 = Clock::now();
   w.clock.advance(dt);
@@ -110,7 +110,15 @@ World::World(const WorldDef& def) : impl_(std::make_unique<WorldImpl>()) {
   setBroadPhase(def.broad_phase);
   setGravity(def.gravity);
   setIntegrator(def.integrator);
+  setContactSolver(def.contact_solver);
+  setSubsteps(def.substeps);
+  if (def.soft_step_points < 1)
+    throw InputError("soft_step_points", "soft_step_points must be at least 1, got " + std::to_string(def.soft_step_points));
+  impl_->def.soft_step_points = def.soft_step_points;
   setIterations(def.iterations);
+  impl_->def.contact_hertz = requirePositive("contact_hertz", def.contact_hertz);
+  impl_->def.contact_damping_ratio = requirePositive("contact_damping_ratio", def.contact_damping_ratio);
+  impl_->def.contact_push_speed = requirePositive("contact_push_speed", def.contact_push_speed);
   setWarmStarting(def.warm_starting);
   setContactDisplacement(def.contact_displacement);
   setPositionCorrection(def.position_correction);
@@ -150,6 +158,15 @@ void World::setIterations(int iterations) {
   if (iterations < 1 || iterations > 10000)
     throw InputError("iterations", "iterations must be between 1 and 10000, got " + std::to_string(iterations));
   impl_->def.iterations = iterations;
+}
+void World::setContactSolver(ContactSolver solver) {
+  if (contactSolverName(solver).empty()) throw InputError("contact_solver", "unknown contact solver");
+  impl_->def.contact_solver = solver;
+}
+void World::setSubsteps(int substeps) {
+  if (substeps < 1 || substeps > 64)
+    throw InputError("substeps", "substeps must be between 1 and 64, got " + std::to_string(substeps));
+  impl_->def.substeps = substeps;
 }
 void World::setWarmStarting(bool on) { impl_->def.warm_starting = on; }
 void World::setContactDisplacement(bool on) { impl_->def.contact_displacement = on; }
@@ -195,6 +212,22 @@ void World::setContactMargin(double distance) {
 void World::setStaticFrictionSpeed(double speed) {
   impl_->def.static_friction_speed = requireNonNegative("static_friction_speed", speed);
 }
+
+std::string_view contactSolverName(ContactSolver s) {
+  switch (s) {
+    case ContactSolver::Auto: return "auto";
+    case ContactSolver::SoftStep: return "soft_step";
+    case ContactSolver::SequentialImpulses: return "sequential_impulses";
+  }
+  return {};
+}
+std::optional<ContactSolver> parseContactSolver(std::string_view name) {
+  for (ContactSolver s : {ContactSolver::Auto, ContactSolver::SoftStep, ContactSolver::SequentialImpulses})
+    if (contactSolverName(s) == name) return s;
+  return std::nullopt;
+}
+
+std::string contactSolverNames() { return "auto, sequential_impulses, soft_step"; }
 
 std::string_view integratorName(Integrator i) {
   switch (i) {
@@ -603,8 +636,8 @@ std::vector<ContactInfo> World::contacts() const {
     for (int i = 0; i < c.count; ++i) {
       info.points[i] = c.points[i].point;
       info.separations[i] = c.points[i].separation;
-      info.normal_impulses[i] = c.points[i].normal_impulse;
-      info.tangent_impulses[i] = c.points[i].tangent_impulse;
+      info.normal_impulses[i] = c.points[i].step_normal_impulse;
+      info.tangent_impulses[i] = c.points[i].step_tangent_impulse;
       info.ids[i] = c.points[i].id;
     }
     out.push_back(info);

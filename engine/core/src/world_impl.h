@@ -84,6 +84,15 @@ struct WorldImpl {
   // The contact solver's compact working copies (contact_solver.cpp).
   std::vector<SolverBody> solver_velocities;
   std::vector<SolverContact> solver_contacts;
+  // The soft step's (soft_step.cpp).
+  std::vector<SoftBody> soft_bodies;
+  std::vector<SoftContact> soft_contacts;
+  std::vector<SoftTally> soft_tally;      // per soft contact
+  std::vector<SoftKick> soft_kick;        // per slot: velocity the step's forces add per sub-step
+  std::vector<SoftKick> soft_warm;        // per slot: the next sub-step's warm start
+  std::vector<double> soft_angle;         // per slot: angle minus the angle at detection
+  std::vector<char> soft_moved;           // per slot: 1 in contact and awake, 2 if also pushed
+  std::vector<uint32_t> soft_list;        // the slots with soft_moved ≠ 0
   std::vector<Vec2> solve_start_velocity;  // per slot: velocity before the contact solve
   std::vector<double> solve_start_angular_velocity;
   std::vector<double> overlap_time;       // per slot: Σ P τ over its contact points (position_correction)
@@ -99,7 +108,8 @@ struct WorldImpl {
   std::vector<uint32_t> polygon_offset;             // per slot: where its polygon starts in them
   std::vector<BodyPair> pairs;
   std::vector<Contact> contacts;           // this step's, sorted by (a, b)
-  std::vector<uint32_t> solved;            // indices of the contacts the solver works on
+  std::vector<uint32_t> solved;            // indices of the contacts sequential impulses work on
+  std::vector<uint32_t> soft_solved;       // indices of the contacts the soft step works on
   std::vector<uint32_t> island_order;      // the solver's constraints grouped by island
   std::vector<Contact> previous_contacts;  // last step's, for warm starting
 
@@ -107,6 +117,7 @@ struct WorldImpl {
   // every edit, contact and force makes.
   std::vector<uint32_t> island;
   std::vector<uint32_t> island_parent;  // union–find scratch
+  std::vector<uint32_t> island_points;  // per island root: contact points (contact_solver.cpp)
   std::vector<double> island_sleep;     // per island root: the shortest sleep time of its members
   std::vector<char> keep_awake;         // per slot: a force that forbids sleep acts on it
   void wakeIsland(uint32_t slot);

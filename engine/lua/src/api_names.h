@@ -17,8 +17,8 @@ inline const std::vector<std::string_view> kBodyWritable = {
     "position", "angle", "velocity", "angular_velocity", "mass", "static", "name", "restitution",
     "friction", "static_friction", "awake"};
 
-inline const std::vector<std::string_view> kWorldFields = {"gravity", "integrator", "dt", "iterations", "sleeping",
-                                                           "time", "step_count", "title"};
+inline const std::vector<std::string_view> kWorldFields = {"gravity", "integrator", "dt", "solver", "iterations",
+                                                           "substeps", "sleeping", "time", "step_count", "title"};
 inline const std::vector<std::string_view> kWorldMethods = {
     "add_box", "add_circle", "add_polygon", "add_spring", "add_damper", "add_force", "bodies", "find", "remove",
     "step", "kinetic_energy", "potential_energy"};
@@ -30,7 +30,8 @@ inline const std::vector<std::string_view> kSpringOptions = {"a", "b", "anchor",
                                                              "rest_length", "damping"};
 inline const std::vector<std::string_view> kDamperOptions = {"body", "coefficient", "angular_coefficient"};
 inline const std::vector<std::string_view> kForceOptions = {"body", "evaluate", "duration", "point", "other"};
-inline const std::vector<std::string_view> kSceneOptions = {"title", "gravity", "dt", "integrator", "iterations",
-                                                            "sleeping", "duration", "camera"};
+inline const std::vector<std::string_view> kSceneOptions = {"title", "gravity", "dt", "integrator", "solver",
+                                                            "iterations", "substeps", "sleeping", "duration",
+                                                            "camera", "memory_limit"};
 
 }  // namespace rigidlab::lua::api

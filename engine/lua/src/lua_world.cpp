@@ -290,7 +290,9 @@ sol::object worldIndex(sol::this_state ts, const LuaWorld& self, sol::stack_obje
   if (k == "gravity") return makeVec(L, w.settings().gravity);
   if (k == "integrator") return sol::make_object(L, std::string(integratorName(w.settings().integrator)));
   if (k == "dt") return sol::make_object(L, self.scene->settings.dt);
+  if (k == "solver") return sol::make_object(L, std::string(contactSolverName(w.settings().contact_solver)));
   if (k == "iterations") return sol::make_object(L, w.settings().iterations);
+  if (k == "substeps") return sol::make_object(L, w.settings().substeps);
   if (k == "sleeping") return sol::make_object(L, w.settings().sleeping);
   if (k == "time") return sol::make_object(L, w.time());
   if (k == "step_count") return sol::make_object(L, w.stepCount());
@@ -328,6 +330,15 @@ void worldNewIndex(sol::this_state ts, const LuaWorld& self, sol::stack_object k
       if (n != std::floor(n) || n < 1 || n > 10000)
         fail(L, function, "must be a whole number between 1 and 10000, got " + describe(value));
       w.setIterations(static_cast<int>(n));
+    } else if (k == "solver") {
+      const auto s = value.is<std::string>() ? parseContactSolver(value.as<std::string>()) : std::nullopt;
+      if (!s) fail(L, function, "must be one of " + contactSolverNames() + ", got " + describe(value));
+      w.setContactSolver(*s);
+    } else if (k == "substeps") {
+      const double n = number();
+      if (n != std::floor(n) || n < 1 || n > 64)
+        fail(L, function, "must be a whole number between 1 and 64, got " + describe(value));
+      w.setSubsteps(static_cast<int>(n));
     } else if (k == "sleeping") {
       if (value.get_type() != sol::type::boolean) fail(L, function, "must be true or false, got " + describe(value));
       w.setSleeping(value.as<bool>());

@@ -56,9 +56,7 @@ void readSettings(Scene::Impl& s, WorldDef& def, const std::string& at) {
   if (table.get_type() == sol::type::lua_nil) return;
   try {
     if (table.get_type() != sol::type::table) fail(L, "scene", "must be a table of settings, got " + describe(table));
-    std::vector<std::string_view> known = kSceneOptions;
-    known.push_back("memory_limit");  // hardening: the scene's own, lower memory cap (MiB)
-    const Options o(L, "scene", table, known);
+    const Options o(L, "scene", table, kSceneOptions);
     if (o.has("memory_limit")) {
       const double cap = static_cast<double>(s.host->limits().memory_bytes >> 20);
       s.host->lowerMemoryLimit(static_cast<size_t>(o.inRange("memory_limit", 1, cap) * double(1 << 20)));
@@ -73,7 +71,14 @@ void readSettings(Scene::Impl& s, WorldDef& def, const std::string& at) {
       if (!integrator) o.fail("integrator", "must be one of " + integratorNames() + ", got \"" + name + "\"");
       def.integrator = *integrator;
     }
+    if (o.has("solver")) {
+      const std::string name = o.string("solver");
+      const auto solver = parseContactSolver(name);
+      if (!solver) o.fail("solver", "must be one of " + contactSolverNames() + ", got \"" + name + "\"");
+      def.contact_solver = *solver;
+    }
     def.iterations = o.integer("iterations", 1, 10000, def.iterations);
+    def.substeps = o.integer("substeps", 1, 64, def.substeps);
     def.sleeping = o.boolean("sleeping", def.sleeping);
     if (o.has("camera")) {
       const Options c(L, "scene.camera", o.get("camera"), {"center", "height"});

@@ -115,8 +115,14 @@ void writeSettings(Writer& w, const World& world, const SceneSettings& settings)
   w.number("scene.dt", settings.dt);
   w.raw(",\n  integrator = ");
   w.string(integratorName(def.integrator));
+  w.raw(",\n  solver = ");
+  w.string(contactSolverName(def.contact_solver));
   w.raw(",\n  iterations = ");
   w.raw(std::to_string(def.iterations));
+  w.raw(",\n  substeps = ");
+  w.raw(std::to_string(def.substeps));
+  w.raw(",\n  sleeping = ");
+  w.raw(def.sleeping ? "true" : "false");
   w.raw(",\n  duration = ");
   w.number("scene.duration", settings.duration);
   w.raw(",\n");

@@ -109,8 +109,16 @@ void worldSection(Session& s) {
   }
   double dt_ms = s.dt() * 1000.0;
   if (inputDouble("dt [ms]", &dt_ms, "%.4g") && dt_ms > 0.01 && dt_ms <= 1000.0) o.dt = dt_ms / 1000.0;
+  const std::string solver(contactSolverName(w.settings().contact_solver));
+  if (ImGui::BeginCombo("contact solver", solver.c_str())) {
+    for (ContactSolver c : {ContactSolver::Auto, ContactSolver::SequentialImpulses, ContactSolver::SoftStep})
+      if (ImGui::Selectable(std::string(contactSolverName(c)).c_str(), c == w.settings().contact_solver)) o.solver = c;
+    ImGui::EndCombo();
+  }
   int iterations = w.settings().iterations;
   if (ImGui::InputInt("iterations", &iterations) && iterations >= 1 && iterations <= 10000) o.iterations = iterations;
+  int substeps = w.settings().substeps;
+  if (ImGui::InputInt("substeps", &substeps) && substeps >= 1 && substeps <= 64) o.substeps = substeps;
   bool warm = w.settings().warm_starting;
   if (ImGui::Checkbox("warm starting", &warm)) o.warm_starting = warm;
   ImGui::SameLine();

@@ -29,7 +29,8 @@ fs::path comparable(const fs::path& p) {
 
 WorldOverrides currentValues(const lua::Scene& scene) {
   const WorldDef& def = scene.world().settings();
-  return {def.gravity, def.integrator, def.iterations, scene.settings().dt, def.warm_starting, def.sleeping};
+  return {def.gravity,      def.integrator, def.iterations,     scene.settings().dt,
+          def.warm_starting, def.sleeping,  def.contact_solver, def.substeps};
 }
 
 void placeCamera(Session& s) {
@@ -226,6 +227,8 @@ void applyOverrides(Session& s) {
     if (o.iterations) w.setIterations(*o.iterations);
     if (o.warm_starting) w.setWarmStarting(*o.warm_starting);
     if (o.sleeping) w.setSleeping(*o.sleeping);
+    if (o.solver) w.setContactSolver(*o.solver);
+    if (o.substeps) w.setSubsteps(*o.substeps);
     if (o.dt) s.scene->setDt(*o.dt);
   } catch (const std::exception& e) {
     s.setStatus(std::string("setting refused: ") + e.what());

@@ -38,7 +38,9 @@ struct WorldOverrides {
   std::optional<double> dt;
   std::optional<bool> warm_starting;
   std::optional<bool> sleeping;
-  bool any() const { return gravity || integrator || iterations || dt || warm_starting || sleeping; }
+  std::optional<ContactSolver> solver;
+  std::optional<int> substeps;
+  bool any() const { return gravity || integrator || iterations || dt || warm_starting || sleeping || solver || substeps; }
 };
 
 enum class Tool { Select, Circle, Box, Polygon };

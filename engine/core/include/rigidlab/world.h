@@ -35,7 +35,27 @@ std::string_view integratorName(Integrator);
 std::optional<Integrator> parseIntegrator(std::string_view name);
 std::string integratorNames();  // "euler, semi_implicit_euler, rk4, implicit_euler" for error messages
 
-// How penetration left after the velocity solve is removed (origin.md §9).
+// How contacts are solved. Islands (bodies linked by contacts) are solved independently.
+enum class ContactSolver {
+  Auto,                // "auto": islands with fewer than soft_step_points contact points by
+                       //   sequential impulses, larger ones (piles, pyramids) by the soft step. The
+                       //   default: exact small collisions and stacks, large piles that stand.
+  SequentialImpulses,  // "sequential_impulses": the thesis's solver (origin.md §8–10): `iterations`
+                       //   passes of impulses on the velocities (contact_solver.cpp), small islands
+                       //   iterated to convergence, then position correction (position_correction.cpp).
+                       //   Contacts are rigid; a pile of more than about 50 rows sinks and spreads.
+  SoftStep,            // "soft_step": the step is cut into `substeps` sub-steps; in each, the
+                       //   step's forces add their share of velocity, the contacts are solved as
+                       //   stiff damped springs that also push overlaps apart, the positions move, and
+                       //   a second pass without the push removes the push's velocity; restitution
+                       //   last (soft_step.cpp; E. Catto, "Solver2D", 2024, as in Box2D v3). Piles of
+                       //   any size stand; contacts give slightly under load (a few mm per row).
+};
+std::string_view contactSolverName(ContactSolver);
+std::optional<ContactSolver> parseContactSolver(std::string_view name);
+std::string contactSolverNames();  // "auto, sequential_impulses, soft_step" for error messages
+
+// How penetration left after the velocity solve is removed (origin.md §9; sequential impulses only).
 enum class PositionCorrection {
   LinearProjection,      // "linear_projection": move both bodies apart along the normal by the
                          //   whole depth, without rotating them (the thesis's method)
@@ -55,7 +75,17 @@ enum class BroadPhaseKind {
 struct WorldDef {
   Vec2 gravity = Vec2(0.0, -9.80665);          // [m/s²], origin.md §1
   Integrator integrator = Integrator::RungeKutta4;  // origin.md §5: RK4 for all ordinary forces
-  int iterations = 10;                          // velocity iterations of the contact solver, ≥ 1
+  ContactSolver contact_solver = ContactSolver::Auto;
+  int soft_step_points = 256;                   // auto: islands with at least this many contact
+                                                //   points use the soft step, ≥ 1
+  int substeps = 8;                             // soft step: sub-steps per step, 1…64
+  double contact_hertz = 60.0;                  // soft step: stiffness of a contact as the frequency
+                                                //   of a mass on a spring [Hz] > 0; at most an eighth
+                                                //   of the sub-step rate is used, twice against static
+                                                //   bodies (soft_step.cpp says why)
+  double contact_damping_ratio = 10.0;          // soft step: ζ of that spring, > 0 (overdamped)
+  double contact_push_speed = 3.0;              // soft step: fastest push out of an overlap [m/s] > 0
+  int iterations = 10;                          // sequential impulses: velocity passes, ≥ 1
   // Start each persisting contact point from last step's impulses (matched by feature id). Off
   // reproduces the thesis's solver, which starts every step from zero.
   bool warm_starting = true;
@@ -92,7 +122,8 @@ struct WorldDef {
 };
 
 // One contact manifold, for drawing and tests. Points are world coordinates; separation < 0 means
-// overlap; impulses are the accumulated values of the last solve [N·s].
+// overlap; impulses are what the last step applied at each point [N·s] (the soft step's sum over its
+// sub-steps, restitution included).
 struct ContactInfo {
   BodyId a, b;
   Vec2 normal = Vec2::Zero();  // unit, from a to b
@@ -148,6 +179,8 @@ class World {
   const WorldDef& settings() const;
   void setGravity(const Vec2& g);
   void setIntegrator(Integrator integrator);
+  void setContactSolver(ContactSolver solver);
+  void setSubsteps(int substeps);
   void setIterations(int iterations);
   void setWarmStarting(bool on);
   void setContactDisplacement(bool on);
