@@ -26,6 +26,7 @@ namespace rigidlab::app {
 namespace {
 
 constexpr const char* kHelp = R"(usage: rigidlab bench [SCENE...] [--reps R] [--json] [--compare] [--peers DIR]
+                      [--solver NAME] [--substeps N] [--iterations N]
 
 Times benchmark scenes (all of them without SCENE arguments), each in its own process. Per scene:
 median and p95 ms per step (only World::step is timed), setup time, the per-stage breakdown,
@@ -35,6 +36,9 @@ contacts, calls into Lua, peak memory, and the peers' stability metrics.
   --compare     then run the peers (Box2D 2.4.1 and Chipmunk 7.0.3, DIR/run.sh, default
                 ../shared/peers beside the repository) and print rigidlab/peer ratios per scene
   --peers DIR   where the peer benchmark is
+  --solver NAME contact solver: auto (default), sequential_impulses or soft_step
+  --substeps N  soft step sub-steps per step (default 8)
+  --iterations N  sequential impulses velocity passes per step (default 10)
 
 scenes:
 )";
@@ -120,7 +124,10 @@ std::string runScene(const BenchScene& scene, int reps) {
   std::string s = "{\"engine\": \"rigidlab\", \"version\": \"0.1.0\", \"build\": \"release\", \"scene\": \"" +
                   scene.kind + "\", \"n\": " + std::to_string(scene.n) + ", \"dynamic_bodies\": " +
                   std::to_string(dynamic) + ", \"steps\": " + std::to_string(scene.steps) + ", \"reps\": " +
-                  std::to_string(reps) + ", \"sleep\": false, \"settings\": {}, \"ms_median\": " + fmt(median(medians)) +
+                  std::to_string(reps) + ", \"sleep\": false, \"settings\": {\"solver\": \"" +
+                  std::string(contactSolverName(benchSettings().contact_solver)) + "\", \"substeps\": " +
+                  std::to_string(benchSettings().substeps) + ", \"iterations\": " +
+                  std::to_string(benchSettings().iterations) + "}, \"ms_median\": " + fmt(median(medians)) +
                   ", \"ms_median_best_rep\": " + fmt(*std::min_element(medians.begin(), medians.end())) +
                   ", \"ms_p95\": " + fmt(median(p95s)) + ", \"ms_mean\": " + fmt(median(means)) +
                   ", \"ms_first_step\": " + fmt(median(firsts)) + ", \"ms_total\": " + fmt(median(totals)) +
@@ -261,13 +268,23 @@ int compare(const std::vector<JsonValue>& ours, const std::filesystem::path& pee
 }  // namespace
 
 int benchCommand(const std::vector<std::string>& argv) {
-  const Args args("bench", argv, {"reps", "peers"}, {"json", "compare"});
+  const Args args("bench", argv, {"reps", "peers", "solver", "substeps", "iterations"}, {"json", "compare"});
   if (args.help()) {
     std::fputs(kHelp, stdout);
     for (const BenchScene& s : benchScenes()) std::printf("  %-12s %s\n", s.name.c_str(), s.description.c_str());
     return kExitOk;
   }
   const int reps = static_cast<int>(args.integer("reps", 1).value_or(3));
+  WorldDef& settings = benchSettings();
+  if (const auto name = args.value("solver")) {
+    const auto solver = parseContactSolver(*name);
+    if (!solver) throw UsageError("bench: --solver must be one of " + contactSolverNames() + ", got '" + *name + "'");
+    settings.contact_solver = *solver;
+  }
+  settings.substeps = static_cast<int>(args.integer("substeps", 1).value_or(settings.substeps));
+  settings.iterations = static_cast<int>(args.integer("iterations", 1).value_or(settings.iterations));
+  if (settings.substeps > 64) throw UsageError("bench: --substeps must be at most 64");
+  if (settings.iterations > 10000) throw UsageError("bench: --iterations must be at most 10000");
   std::vector<const BenchScene*> selected;
   for (const std::string& name : args.positional()) {
     const auto it = std::find_if(benchScenes().begin(), benchScenes().end(), [&](const BenchScene& s) { return s.name == name; });

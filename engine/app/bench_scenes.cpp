@@ -8,6 +8,11 @@
 #include "report.h"
 
 namespace rigidlab::app {
+WorldDef& benchSettings() {
+  static WorldDef def;
+  return def;
+}
+
 namespace {
 
 // The peers' deterministic xorshift generator (same sequence for every engine).
@@ -25,7 +30,7 @@ struct Rng {
 };
 
 WorldDef peerWorld() {
-  WorldDef def;
+  WorldDef def = benchSettings();
   def.gravity = Vec2(0.0, -10.0);
   def.sleeping = false;  // the peers time their scenes with sleeping off
   return def;  // otherwise rigidlab's defaults: what a user gets

@@ -57,6 +57,10 @@ struct BenchScene {
 
 const std::vector<BenchScene>& benchScenes();
 
+// Solver settings every bench world starts from (rigidlab's defaults unless `rigidlab bench`
+// is told otherwise), so one run can show what sub-steps or iterations cost and buy.
+WorldDef& benchSettings();
+
 // The peers' "metrics" object for this scene's final state, as JSON.
 std::string benchMetrics(const BenchScene& scene, BenchWorld& w, const BenchTracker& tracker);
 

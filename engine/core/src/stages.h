@@ -15,6 +15,9 @@ void findPairs(WorldImpl& w);              // broad_phase.cpp     origin.md §7
 void narrowPhase(WorldImpl& w);            // narrow_phase.cpp    origin.md §7
 void solveContacts(WorldImpl& w);          // contact_solver.cpp  origin.md §8–10, calls softStep
 void softStep(WorldImpl& w);               // soft_step.cpp       the contacts in w.soft_solved
+// Chooses the soft step's AVX2 or baseline passes for this process (by default AVX2 where the
+// processor has it); false if AVX2 was asked for and the processor lacks it. For tests.
+bool softStepUseAvx2(bool on);
 void correctPositions(WorldImpl& w);       // position_correction.cpp  origin.md §9, the contacts in w.solved
 void updateSleep(WorldImpl& w);            // sleep.cpp           islands and sleeping
 void expireForces(WorldImpl& w);           // world.cpp           origin.md §6

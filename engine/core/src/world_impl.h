@@ -86,8 +86,12 @@ struct WorldImpl {
   std::vector<SolverContact> solver_contacts;
   // The soft step's (soft_step.cpp).
   std::vector<SoftBody> soft_bodies;
-  std::vector<SoftContact> soft_contacts;
-  std::vector<SoftTally> soft_tally;      // per soft contact
+  std::vector<SoftLanes> soft_lanes;
+  std::vector<SoftTally> soft_tally;      // per lane of soft_lanes
+  std::vector<uint32_t> soft_source;      // per lane: index into contacts, or UINT32_MAX if empty
+  std::vector<uint32_t> soft_slot;        // per soft contact: its lane (group · L + lane)
+  std::vector<uint32_t> soft_colors_used; // per slot: colours of the contacts that move the body
+  std::vector<uint8_t> soft_color;        // per soft contact
   std::vector<SoftKick> soft_kick;        // per slot: velocity the step's forces add per sub-step
   std::vector<SoftKick> soft_warm;        // per slot: the next sub-step's warm start
   std::vector<double> soft_angle;         // per slot: angle minus the angle at detection
