@@ -31,11 +31,11 @@ function PopulateWorld(world)
   world:add_spring{ a = bob, anchor = {-6, 13}, stiffness = 40, rest_length = 3, damping = 0.2 }
   local above = nil
   for i = 1, 4 do
-    local link = world:add_box{ width = 0.5, height = 0.3, position = {10 + i * 0.8, 12 - i * 0.2}, density = 2 }
+    local link = world:add_box{ width = 0.5, height = 0.3, position = {2 + i * 0.8, 13 - i * 0.2}, density = 2 }
     if above then
       spring.add(world, { a = above, b = link, stiffness = 150, rest_length = 0.8, damping = 1 })
     else
-      spring.add(world, { a = link, anchor = {10, 12.5}, stiffness = 150, rest_length = 0.8, damping = 1 })
+      spring.add(world, { a = link, anchor = {2, 13.5}, stiffness = 150, rest_length = 0.8, damping = 1 })
     end
     above = link
   end
@@ -53,7 +53,7 @@ function OnKey(world, key)
 end
 
 function OnDraw(draw)
-  draw:text({-17, 15}, string.format("balls dropped with B: %d", dropped), {1, 1, 0.6})
+  draw:text({-8, 14.5}, string.format("balls dropped with B: %d", dropped), {1, 1, 0.6})
 end
 
 function Check(world)

@@ -44,7 +44,7 @@ const Golden kGolden[] = {
     {"scripts/scenes/experiment4_springs.lua", "d6fd57cbc715d042"},
     {"scripts/scenes/free_fall.lua", "0e7c53772421e76e"},
     {"scripts/scenes/newtons_cradle.lua", "de7fa7ac2fe04a5d"},
-    {"scripts/scenes/playground.lua", "401eba4d9a3da9c2"},
+    {"scripts/scenes/playground.lua", "b775aafef0929308"},
     {"scripts/scenes/pyramid.lua", "08a48b11668d0b3d"},
     {"scripts/scenes/spring_chain.lua", "a6006e467d57afe5"},
     {"scripts/scenes/spring_pendulum.lua", "4356e1808a338acf"},

@@ -80,6 +80,33 @@ void setStageState(WorldImpl& w, uint32_t i, const Vec2& c, double angle, const 
 
 bool isMoving(const WorldImpl& w, uint32_t i) { return w.isActive(i); }  // dynamic and awake
 
+// True if some body's dampers (Force::dampingRate, summed per body) reach h·c/m > 2.5 or
+// h·c_ω/I > 2.5 in this interval.
+bool dampingTooStiffForRk4(WorldImpl& w, double t0, double h) {
+  constexpr double kLimit = 2.5;
+  auto& rate = w.damping_rate;
+  rate.assign(w.bodies.size(), Force::DampingRate{});
+  bool any = false;
+  for (const ForceEntry& f : w.forces) {
+    if (!isActive(f, t0)) continue;
+    const Force::DampingRate d = f.force->dampingRate();
+    if (d.linear == 0.0 && d.angular_a == 0.0 && d.angular_b == 0.0) continue;
+    any = true;
+    rate[f.a.index].linear += d.linear;
+    rate[f.a.index].angular_a += d.angular_a;
+    if (f.b.isNull()) continue;
+    rate[f.b.index].linear += d.linear;
+    rate[f.b.index].angular_a += d.angular_b;  // per slot, angular_a holds the body's own sum
+  }
+  if (!any) return false;
+  for (uint32_t i = 0; i < rate.size(); ++i) {
+    if (!isMoving(w, i)) continue;
+    const Body& b = w.bodies[i];
+    if (h * rate[i].linear * b.inv_mass > kLimit || h * rate[i].angular_a * b.inv_inertia > kLimit) return true;
+  }
+  return false;
+}
+
 void integrateInterval(WorldImpl& w, double t0, double h) {
   const uint32_t n = static_cast<uint32_t>(w.bodies.size());
   for (uint32_t i = 0; i < n; ++i)
@@ -96,15 +123,24 @@ void integrateInterval(WorldImpl& w, double t0, double h) {
     if (any_dependent) evaluateForces(w, t0, t, true, w.wrenches);
   };
 
-  switch (w.def.integrator) {
+  // RK4 is explicit: a damper with h·c/m above 2.785 multiplies the velocity by more than 1 each
+  // step (RK4's factor is the degree-4 Taylor polynomial of e^(−hc/m): 291 at hc/m = 10) and blows
+  // up (accuracy.md S5). Above 2.5 the interval is integrated as semi-implicit Euler with implicit
+  // damping instead, which never flips or grows a velocity; counted in StepStats::rk4_handovers.
+  Integrator method = w.def.integrator;
+  if (method == Integrator::RungeKutta4 && any_dependent && dampingTooStiffForRk4(w, t0, h)) {
+    method = Integrator::SemiImplicitEuler;
+    ++w.stats.rk4_handovers;
+  }
+  switch (method) {
     case Integrator::ExplicitEuler:
     case Integrator::SemiImplicitEuler:
     case Integrator::ImplicitEuler: {
       derivative(t0);
-      const bool semi = w.def.integrator != Integrator::ExplicitEuler;
+      const bool semi = method != Integrator::ExplicitEuler;
       // Damping (and for implicit_euler stiffness) of springs and dampers is linearly implicit
       // (implicit_solve.cpp); without such forces Δv = h a(t_n, y_n).
-      const bool implicit = implicitVelocityChange(w, t0, h, w.def.integrator == Integrator::ImplicitEuler);
+      const bool implicit = implicitVelocityChange(w, t0, h, method == Integrator::ImplicitEuler);
       for (uint32_t i = 0; i < n; ++i) {
         if (!isMoving(w, i)) continue;
         Body& b = w.bodies[i];

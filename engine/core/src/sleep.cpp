@@ -12,6 +12,8 @@
 namespace rigidlab {
 namespace {
 
+constexpr double kSleepOverlapMargin = 0.005;  // [m] overlap beyond the contact's slop that keeps bodies awake
+
 uint32_t root(std::vector<uint32_t>& parent, uint32_t i) {
   while (parent[i] != i) {
     parent[i] = parent[parent[i]];  // path halving
@@ -55,6 +57,17 @@ void updateSleep(WorldImpl& w) {
     if (!w.isActive(i)) continue;
     const bool still = b.velocity.squaredNorm() <= v2 && std::abs(b.angular_velocity) <= w.def.sleep_angular_speed;
     b.sleep_time = still && !w.keep_awake[i] ? b.sleep_time + dt : 0.0;
+  }
+  // A body still overlapping deeply is not at rest, only slow: the position pass (or the soft
+  // step's push-out, limited to contact_push_speed) is still separating it. Letting it sleep would
+  // freeze the overlap (boxes spawned half inside each other slept with 4.9 cm left; stability
+  // case deep_overlap).
+  for (const Contact& c : w.contacts) {
+    double deepest = 0.0;
+    for (int k = 0; k < c.count; ++k) deepest = std::min(deepest, c.points[k].separation);
+    if (deepest >= -(c.slop + kSleepOverlapMargin)) continue;
+    w.bodies[c.a].sleep_time = 0.0;
+    w.bodies[c.b].sleep_time = 0.0;
   }
 
   w.island_parent.resize(n);

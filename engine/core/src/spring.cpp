@@ -38,6 +38,12 @@ void SpringForce::evaluate(const ForceInput& in, ForceOutput& out) {
   if (in.b) out.b = atPoint(*in.b, -fa, pb);
 }
 
+Force::DampingRate SpringForce::dampingRate() const {
+  // The damping force c (u·Δv) u at an attachment point r from the body origin resists spin by at
+  // most c r² (the origin stands in for the centre of mass: an estimate, good enough for a limit).
+  return {def_.damping, def_.damping * def_.local_a.squaredNorm(), def_.damping * def_.local_b.squaredNorm()};
+}
+
 bool SpringForce::linearize(const ForceInput& in, ForceJacobian& out) const {
   // At the attachment points: ∂F_a/∂p_a = −K, ∂F_a/∂p_b = K, ∂F_a/∂v_a = −C, ∂F_a/∂v_b = C with
   //   K = k [u uᵀ + max(0, 1 − L0/L) (I − u uᵀ)],   C = c u uᵀ,

@@ -96,6 +96,14 @@ class Force {
   // implicit_euler then treats its stiffness and damping implicitly, and the Euler methods its
   // damping (so a damper never flips a velocity's sign). The default: explicit only.
   virtual bool linearize(const ForceInput& /*in*/, ForceJacobian& /*out*/) const { return false; }
+  // How strongly the force resists velocity: linear ∂F/∂v [N·s/m] and, per body it acts on
+  // (a, b), angular ∂τ/∂ω [N·m·s], estimates. RK4 uses them to see a damper too stiff for it
+  // (integrator.cpp). The default: none (forces that do not damp, and forces that cannot say,
+  // such as scripts).
+  struct DampingRate {
+    double linear = 0.0, angular_a = 0.0, angular_b = 0.0;
+  };
+  virtual DampingRate dampingRate() const { return {}; }
   // True if the bodies it acts on may fall asleep while it acts: a force that depends only on the
   // bodies' states (springs, dampers) is constant while they rest. Forces that may change with time
   // (scripts, pushes, the mouse) keep their bodies awake. The default: keep awake.

@@ -29,6 +29,7 @@ class SpringForce final : public Force {
   explicit SpringForce(const SpringDef& def);  // rest_length must be resolved
   void evaluate(const ForceInput& in, ForceOutput& out) override;
   bool linearize(const ForceInput& in, ForceJacobian& out) const override;
+  DampingRate dampingRate() const override;  // c, and c·r² with r each attachment point's lever
   bool allowsSleep() const override { return true; }
   double potentialEnergy(const BodyState& a, const BodyState* b) const override;  // ½ k (L − L0)²
   void draw(DebugDraw& dd, const BodyState& a, const BodyState* b) const override;
@@ -54,6 +55,7 @@ class DamperForce final : public Force {
   explicit DamperForce(const DamperDef& def);
   void evaluate(const ForceInput& in, ForceOutput& out) override;
   bool linearize(const ForceInput& in, ForceJacobian& out) const override;
+  DampingRate dampingRate() const override { return {def_.coefficient, def_.angular_coefficient, 0.0}; }
   bool allowsSleep() const override { return true; }
   void draw(DebugDraw& dd, const BodyState& a, const BodyState* b) const override;
   std::string_view kind() const override { return "damper"; }

@@ -15,7 +15,7 @@
 
 namespace rigidlab::lua {
 
-// The scene file's text. Numbers are written with 17 significant digits (bit-exact round trip).
+// The scene file's text. Numbers are written in their shortest form that reads back to the same bits (std::to_chars).
 std::string sceneSource(const World& world, const SceneSettings& settings);
 
 // Writes sceneSource() to `path` atomically. Throws SceneError("<path>: <reason>") on failure,
