@@ -191,6 +191,11 @@ TEST_CASE("every scene mistake is one message: file:line: function: what, with t
        1, "test.lua:3: evaluate: returned a non-finite fx: inf (body id 1, t = 0 s)"},
       {"function PopulateWorld(world)\n  local b = world:add_circle{ radius = 1 }\n  world:add_force{ body = b, evaluate = function(s) return 'x' end }\nend",
        1, "test.lua:3: evaluate: must return fx, fy [, torque] as numbers; fx is \"x\""},
+      // A C function as evaluate has no line of its own: the add_force call is named.
+      {"function PopulateWorld(world)\n  local b = world:add_circle{ radius = 1 }\n  world:add_force{ body = b, evaluate = math.floor }\nend",
+       1, "test.lua:3: evaluate: bad argument #1 to 'math.floor' (number expected, got table)"},
+      {"function PopulateWorld(world)\n  local b = world:add_circle{ radius = 1 }\n\n  world:add_force{ body = b,\n    evaluate = rawlen }\nend",
+       1, "test.lua:4: evaluate: must return fx, fy [, torque] as numbers; fy is nil"},
       {"function PopulateWorld(world)\n  local b = world:add_circle{ radius = 1 }\n  world:add_force{ body = b, evaluate = function(s)\n    error('boom') end }\nend",
        1, "test.lua:4: evaluate: boom"},
       {"function PopulateWorld(world) end\nfunction OnStep(world, dt)\n  world:step(-1)\nend", 1,

@@ -14,7 +14,14 @@ LuaForce::LuaForce(ScriptHost& host, const sol::function& evaluate, std::optiona
   lua_Debug ar;
   lua_pushvalue(L_, -1);
   lua_getinfo(L_, ">S", &ar);
-  defined_at_ = std::string(ar.short_src) + ":" + std::to_string(ar.linedefined);
+  if (ar.linedefined > 0) {
+    defined_at_ = std::string(ar.short_src) + ":" + std::to_string(ar.linedefined);
+  } else {
+    // A C function (evaluate = math.floor) has no line of its own: name the add_force call.
+    defined_at_ = where(L_, 0);
+    if (defined_at_.ends_with(": ")) defined_at_.resize(defined_at_.size() - 2);
+    if (defined_at_.empty()) defined_at_ = "?";
+  }
   function_ref_ = luaL_ref(L_, LUA_REGISTRYINDEX);
   state_ = makeState();
   if (two_body_) other_ = makeState();
@@ -91,6 +98,8 @@ void LuaForce::evaluate(const ForceInput& in, ForceOutput& out) {
                                                      std::to_string(host_.limits().memory_bytes >> 20) + " MiB)"
                           : lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "error";
     lua_settop(L, top);
+    // An error raised inside a C function called directly as evaluate has no Lua line to point at.
+    if (!hasLocation(message)) message = defined_at_ + ": " + message;
     throw ScriptError(host_.errorText(std::move(message), "evaluate"));
   }
   double v[3] = {0.0, 0.0, 0.0};

@@ -49,17 +49,6 @@ int luaRegisterVec2(lua_State* L) {
   return 0;
 }
 
-bool hasLocation(const std::string& message) {
-  // "<chunk>:<digits>:" before the first newline
-  const size_t end = message.find('\n');
-  for (size_t colon = message.find(':'); colon != std::string::npos && colon < end;
-       colon = message.find(':', colon + 1)) {
-    size_t i = colon + 1;
-    while (i < message.size() && std::isdigit(static_cast<unsigned char>(message[i]))) ++i;
-    if (i > colon + 1 && i < message.size() && message[i] == ':') return true;
-  }
-  return false;
-}
 
 // --- Caps on C functions the budget hook cannot interrupt (script_host.h, README "Security").
 
@@ -174,6 +163,18 @@ int luaBudgetExpired(lua_State* L) {
 }
 
 }  // namespace
+
+bool hasLocation(const std::string& message) {
+  // "<chunk>:<digits>:" before the first newline
+  const size_t end = message.find('\n');
+  for (size_t colon = message.find(':'); colon != std::string::npos && colon < end;
+       colon = message.find(':', colon + 1)) {
+    size_t i = colon + 1;
+    while (i < message.size() && std::isdigit(static_cast<unsigned char>(message[i]))) ++i;
+    if (i > colon + 1 && i < message.size() && message[i] == ':') return true;
+  }
+  return false;
+}
 
 namespace {
 

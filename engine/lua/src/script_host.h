@@ -96,6 +96,8 @@ class ScriptHost {
 // Message handler for protected calls (lua_pcall's msgh): keeps a string error as it is and
 // describes any other error object without running its metamethods.
 int messageHandler(lua_State* L);
+// True if an error message starts with a "<chunk>:<line>:" location (before its first newline).
+bool hasLocation(const std::string& message);
 
 // The host that owns a Lua state (stored in its registry).
 ScriptHost& hostOf(lua_State* L);
