@@ -8,17 +8,19 @@
 
 namespace rigidlab {
 
+// Kept small and packed (no padding between fields): every stage from the narrow phase on walks the
+// whole array, and a pile of 12 500 contacts is several megabytes, so each byte is paid for in cache
+// misses several times per step (callgrind/perf, pyramid of base 100). What only sequential
+// impulses need during their solve (effective masses, the 2×2 K) lives in their SolverContact.
 struct ContactPoint {
   Vec2 point = Vec2::Zero();      // world [m]
   double separation = 0.0;        // [m] < 0 overlap
   uint32_t id = 0;                // feature id (manifold.h)
+  bool persisted = false;         // the same features touched in the previous step
   Vec2 ra = Vec2::Zero();         // from A's centre of mass to the point [m]
   Vec2 rb = Vec2::Zero();         // from B's centre of mass to the point [m]
-  double normal_mass = 0.0;       // 1 / (1/m_A + 1/m_B + (r_A×n)²/I_A + (r_B×n)²/I_B)   (origin.md §8)
-  double tangent_mass = 0.0;      // same with the tangent t                         (origin.md §10)
   double target_velocity = 0.0;   // normal relative velocity the solver aims for (restitution) [m/s]
   double overlap_time = 0.0;      // how long the point has overlapped this step [s] (position_correction.cpp)
-  bool persisted = false;         // the same features touched in the previous step
   double friction = 0.0;          // f_s or f_d, chosen from the slip at the start of the step
   double normal_impulse = 0.0;    // accumulated, ≥ 0 [N·s]; the next step starts from it (the soft
                                   //   step's is that of its last sub-step)
@@ -31,23 +33,31 @@ struct ContactPoint {
 
 struct Contact {
   uint32_t a = 0, b = 0;  // body slots
-  Vec2 normal = Vec2::Zero();
   int count = 0;
+  bool block = false;     // sequential impulses solve the two points together (contact_solver.cpp)
+  Vec2 normal = Vec2::Zero();
   ContactPoint points[2];
   double restitution = 0.0;
   double friction = 0.0;         // combined dynamic friction
   double static_friction = 0.0;  // combined static friction
-  Vec2 local_normal = Vec2::Zero();  // the normal in A's body coordinates (position pass)
   double slop = 0.0;             // penetration left alone by the position pass [m]
-  // Two points solved together as a 2×2 problem (contact_solver.cpp): K and its inverse.
-  bool block = false;
-  Mat22 k = Mat22::Zero(), k_inverse = Mat22::Zero();
+  Vec2 local_normal = Vec2::Zero();  // the normal in A's body coordinates (position pass)
+};
+static_assert(sizeof(ContactPoint) <= 160 && sizeof(Contact) <= 400, "packed: see the comment above ContactPoint");
+
+// A solved contact's bodies, noted once when the solvers are chosen (contact_solver.cpp), so that
+// the loops that only need them do not load the Contact again (each load of a large pile's
+// contacts misses the cache).
+struct SolvedRef {
+  uint32_t a, b;   // body slots
+  uint8_t count;   // contact points
+  uint8_t active;  // bit 0: A is awake and dynamic (WorldImpl::isActive), bit 1: B
 };
 
 // The contact solver's working copies: its iterations read and write only these, in plain doubles
-// (contact_solver.cpp). A SolverContact is about half a Contact, so a pass stays in cache and
-// takes about half the instructions (callgrind, pyramid of base 40). Impulses are copied back to
-// the Contacts afterwards, for warm starting and drawing.
+// (contact_solver.cpp), and its prepare step writes them directly. A SolverContact is about half a
+// Contact, so a pass stays in cache and takes about half the instructions (callgrind, pyramid of
+// base 40). Impulses are copied back to the Contacts afterwards, for warm starting and drawing.
 struct SolverPoint {
   double rax, ray, rbx, rby;  // lever arms r_A, r_B
   double normal_mass, tangent_mass, target, friction;
@@ -61,6 +71,13 @@ struct SolverContact {
   double nx, ny;
   double k11, k12, k22, i11, i12, i22;  // K and K⁻¹ of a block contact
   SolverPoint p[2];
+};
+
+// What the solver's prepare step finds that only its iterations need, per solved contact: kept out
+// of the Contact, which every stage walks, and copied into the SolverContact.
+struct SolverPrepared {
+  double normal_mass[2] = {0.0, 0.0}, tangent_mass[2] = {0.0, 0.0};
+  double k11 = 0.0, k12 = 0.0, k22 = 0.0, i11 = 0.0, i12 = 0.0, i22 = 0.0;  // K and K⁻¹ of a block contact
 };
 
 struct SolverBody {  // velocity and inverse mass of a body, as plain doubles
@@ -106,9 +123,14 @@ struct SoftLanes {
   double pn[2][L], pt[2][L];           // impulses of the current sub-step, warm-started [N·s]
 };
 
-// Per contact, touched once per sub-step or less: totals for reports and restitution.
+// Per group of SoftLanes: the impulses applied during the step [N·s], for reports. Lanes side by
+// side, so that the relax pass adds a group's four contacts in one go.
+struct SoftTotals {
+  double n[2][kSoftLanes], t[2][kSoftLanes];
+};
+
+// Per contact, touched once per sub-step or less: what restitution needs.
 struct SoftTally {
-  double total_n[2], total_t[2];  // impulses applied during the step [N·s]
   double approach[2];             // normal velocity when the point first pushed (< 0 closing) [m/s]
   double kick[2];                 // normal velocity the step's forces add per sub-step [m/s]
   int impact[2];                  // sub-step of that first push, −1 before it

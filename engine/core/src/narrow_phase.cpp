@@ -13,6 +13,11 @@
 #include "world_impl.h"
 
 namespace rigidlab {
+namespace {
+
+const Contact kBlank{};
+
+}  // namespace
 
 void narrowPhase(WorldImpl& w) {
   std::swap(w.contacts, w.previous_contacts);
@@ -24,6 +29,11 @@ void narrowPhase(WorldImpl& w) {
     const Body& b = w.bodies[pair.b];
     while (old < prev.size() && (prev[old].a < pair.a || (prev[old].a == pair.a && prev[old].b < pair.b))) ++old;
     const bool had = old < prev.size() && prev[old].a == pair.a && prev[old].b == pair.b;
+    if (old + 2 < prev.size()) {  // the previous contacts are walked in order, and out of the cache too
+      const char* ahead = reinterpret_cast<const char*>(&prev[old + 2]);
+      for (size_t offset = 0; offset < sizeof(Contact); offset += 64) __builtin_prefetch(ahead + offset);
+      __builtin_prefetch(ahead + sizeof(Contact) - 1);
+    }
     if (!w.isActive(pair.a) && !w.isActive(pair.b)) {
       // Both asleep (or one static): nothing moved, so the contact is as it was; keep it with its
       // impulses for when the island wakes.
@@ -41,7 +51,17 @@ void narrowPhase(WorldImpl& w) {
     // An awake body reaching a sleeping one wakes its island.
     if (!a.isStatic() && !a.awake) w.wakeIsland(pair.a);
     if (!b.isStatic() && !b.awake) w.wakeIsland(pair.b);
-    Contact& c = w.contacts.emplace_back();  // reused storage: no allocation in steady state
+    // The storage two contacts on, for writing: last written two steps ago, it is out of the cache
+    // for a large pile, and clearing a new Contact waited on it (perf, pyramid of base 100).
+    if (w.contacts.size() + 2 < w.contacts.capacity()) {
+      const char* next = reinterpret_cast<const char*>(w.contacts.data() + w.contacts.size() + 2);
+      for (size_t offset = 0; offset < sizeof(Contact); offset += 64) __builtin_prefetch(next + offset, 1);
+      __builtin_prefetch(next + sizeof(Contact) - 1, 1);
+    }
+    // Reused storage: no allocation in steady state. Copied from a blank contact rather than
+    // value-initialised, which GCC does with three `rep stos` (Contact, then each point), slow to
+    // start: with them this stage took 1.65 ms on the pyramid of base 100, 1.28 ms without.
+    Contact& c = w.contacts.emplace_back(kBlank);
     c.a = pair.a;
     c.b = pair.b;
     c.normal = m.normal;

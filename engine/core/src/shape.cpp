@@ -131,6 +131,15 @@ Shape makePolygon(std::span<const Vec2> points) {
 Shape makeBox(double width, double height, const Vec2& center, double angle) {
   const double hx = 0.5 * requirePositive("width", width);
   const double hy = 0.5 * requirePositive("height", height);
+  // A sliver thinner than this merges its corners in the polygon check (tolerance 1e-9 of the
+  // extent): say which side is too thin instead of reporting two "distinct points".
+  constexpr double kMinAspect = 1e-8;
+  if (hx < kMinAspect * hy)
+    throw InputError("width", "width must be at least " + formatNumber(kMinAspect) + " × height (" +
+                                  formatNumber(height) + "), got " + formatNumber(width));
+  if (hy < kMinAspect * hx)
+    throw InputError("height", "height must be at least " + formatNumber(kMinAspect) + " × width (" +
+                                   formatNumber(width) + "), got " + formatNumber(height));
   requireFinite("center", center);
   const Rot q = Rot::fromAngle(requireFinite("angle", angle));
   Shape s;

@@ -85,10 +85,12 @@ struct WorldImpl {
   // The contact solver's compact working copies (contact_solver.cpp).
   std::vector<SolverBody> solver_velocities;
   std::vector<SolverContact> solver_contacts;
+  std::vector<SolverPrepared> solver_prepared;  // per solved contact
   // The soft step's (soft_step.cpp).
   std::vector<SoftBody> soft_bodies;
   std::vector<SoftLanes> soft_lanes;
   std::vector<SoftTally> soft_tally;      // per lane of soft_lanes
+  std::vector<SoftTotals> soft_totals;    // per group of soft_lanes
   std::vector<uint32_t> soft_source;      // per lane: index into contacts, or UINT32_MAX if empty
   std::vector<uint32_t> soft_slot;        // per soft contact: its lane (group · L + lane)
   std::vector<uint32_t> soft_colors_used; // per slot: colours of the contacts that move the body
@@ -115,6 +117,8 @@ struct WorldImpl {
   std::vector<Contact> contacts;           // this step's, sorted by (a, b)
   std::vector<uint32_t> solved;            // indices of the contacts sequential impulses work on
   std::vector<uint32_t> soft_solved;       // indices of the contacts the soft step works on
+  std::vector<SolvedRef> solved_refs;      // per entry of solved: its bodies (contact_solver.cpp)
+  std::vector<SolvedRef> soft_refs;        // per entry of soft_solved
   std::vector<uint32_t> island_order;      // the solver's constraints grouped by island
   std::vector<Contact> previous_contacts;  // last step's, for warm starting
 

@@ -63,7 +63,12 @@ sol::object createBody(lua_State* L, Scene::Impl& scene, const Options& o, const
 int addBox(lua_State* L) {
   Scene::Impl& scene = selfWorld(L, sol::stack_object(L, 1), "add_box");
   const Options o(L, "add_box", sol::stack_object(L, 2), with(kBodyOptions, {"width", "height"}));
-  const Shape shape = makeBox(o.positive("width"), o.positive("height"));
+  Shape shape;
+  try {
+    shape = makeBox(o.positive("width"), o.positive("height"));
+  } catch (const InputError& e) {
+    fail(L, "add_box", e.what());  // names width or height and the value
+  }
   createBody(L, scene, o, shape).push(L);
   return 1;
 }
@@ -83,8 +88,11 @@ int addPolygon(lua_State* L) {
   if (list.get_type() != sol::type::table)
     o.fail("vertices", list.get_type() == sol::type::lua_nil ? "is required"
                                                              : "must be a list of points {{x, y}, ...}, got " + describe(list));
+  // The raw length: `#` would run a __len metamethod of the script's inside the host.
+  list.push(L);
+  const size_t n = lua_rawlen(L, -1);
+  lua_pop(L, 1);
   const sol::table t = list.as<sol::table>();
-  const size_t n = t.size();
   if (n > static_cast<size_t>(kMaxPolygonVertices))
     o.fail("vertices", "has " + std::to_string(n) + " points, at most " + std::to_string(kMaxPolygonVertices) +
                            " are allowed");
