@@ -21,10 +21,87 @@ void AllPairsBroadPhase::findPairs(std::span<const Proxy> proxies, std::vector<B
   }
 }
 
+namespace {
+
+// A body's box grows by this fraction of its larger side: a 1 m box may then move 25 cm (or turn)
+// before the list is rebuilt, which a resting or slowly moving body takes many steps to do.
+constexpr double kGrowth = 0.25;
+// A list that served fewer steps than this was not worth building; after one, rebuild plainly for
+// kCooldown steps before trying again.
+constexpr int kShortLife = 4;
+constexpr int kCooldown = 30;
+
+bool& pairCacheOn() {
+  static bool on = true;
+  return on;
+}
+
+bool inside(const Aabb& box, const Aabb& grown) {
+  return grown.lower.x() <= box.lower.x() && grown.lower.y() <= box.lower.y() && box.upper.x() <= grown.upper.x() &&
+         box.upper.y() <= grown.upper.y();
+}
+
+// True if every pair whose boxes overlap now is in the cached list (PairCache).
+bool cacheHolds(const PairCache& c, std::span<const Proxy> proxies) {
+  if (!c.valid || c.grown.size() != proxies.size()) return false;
+  for (size_t i = 0; i < proxies.size(); ++i) {
+    const Proxy& p = proxies[i];
+    const Proxy& g = c.grown[i];
+    if (p.active != g.active || p.is_static != g.is_static || (p.active && !inside(p.aabb, g.aabb))) return false;
+  }
+  return true;
+}
+
+// The pairs of the list whose boxes overlap now, in the list's (ascending) order.
+void filterPairs(const PairCache& c, std::span<const Proxy> proxies, std::vector<BodyPair>& pairs) {
+  pairs.clear();
+  for (const BodyPair& q : c.pairs)
+    if (proxies[q.a].aabb.overlaps(proxies[q.b].aabb)) pairs.push_back(q);
+}
+
+void findPairsCached(WorldImpl& w) {
+  PairCache& c = w.pair_cache;
+  if (!pairCacheOn()) {
+    c.valid = false;
+    w.broad_phase->findPairs(w.proxies, w.pairs);
+    return;
+  }
+  if (cacheHolds(c, w.proxies)) {
+    filterPairs(c, w.proxies, w.pairs);
+    ++c.age;
+    w.stats.pairs_reused = true;
+    return;
+  }
+  if (c.valid && c.age < kShortLife) c.cooldown = kCooldown;
+  c.valid = false;
+  if (c.cooldown > 0) {
+    --c.cooldown;
+    w.broad_phase->findPairs(w.proxies, w.pairs);
+    return;
+  }
+  c.grown.assign(w.proxies.begin(), w.proxies.end());
+  for (Proxy& g : c.grown) {
+    if (!g.active) continue;
+    const Vec2 size = g.aabb.upper - g.aabb.lower;
+    const Vec2 grow = Vec2::Constant(kGrowth * size.maxCoeff());
+    g.aabb.lower -= grow;
+    g.aabb.upper += grow;
+  }
+  w.broad_phase->findPairs(c.grown, c.pairs);
+  c.valid = true;
+  c.age = 0;
+  filterPairs(c, w.proxies, w.pairs);
+}
+
+}  // namespace
+
+void usePairCache(bool on) { pairCacheOn() = on; }
+
 void findPairs(WorldImpl& w) {
   const size_t n = w.bodies.size();
   if (n < 2) {
     w.pairs.clear();
+    w.pair_cache.valid = false;
     return;
   }
   w.proxies.resize(n);
@@ -57,7 +134,7 @@ void findPairs(WorldImpl& w) {
     p.aabb.lower -= half_margin;
     p.aabb.upper += half_margin;
   }
-  w.broad_phase->findPairs(w.proxies, w.pairs);
+  findPairsCached(w);
 }
 
 }  // namespace rigidlab

@@ -22,6 +22,21 @@ struct Proxy {
   bool active = false;  // false for destroyed slots
 };
 
+// Pairs kept from one step to the next (a Verlet list; Box2D's "fat" boxes serve the same end).
+// The list holds every pair whose boxes, grown by a margin, overlapped when it was built. While every
+// body's box stays inside its grown box (and no body is added, removed or switched static), every
+// pair that can overlap now is in the list, so the step only filters it: the same pairs in the same
+// order as a rebuild, at the cost of a containment test per body. Resting piles and contact-free
+// scenes rebuild rarely; when lists keep dying within a few steps (a falling rain) the step goes
+// back to plain rebuilds for a while (broad_phase.cpp).
+struct PairCache {
+  std::vector<Proxy> grown;     // per slot when built: the box grown by its margin, and the flags
+  std::vector<BodyPair> pairs;  // pairs whose grown boxes overlap, ascending
+  int age = 0;                  // steps the list has served
+  int cooldown = 0;             // steps left of plain rebuilds
+  bool valid = false;
+};
+
 class BroadPhase {
  public:
   virtual ~BroadPhase() = default;

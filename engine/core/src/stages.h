@@ -12,6 +12,9 @@ void sweepFastBodies(WorldImpl& w);        // continuous.cpp      fast bodies ag
 // into w.implicit.dv; false (nothing computed) if no active force can be linearised.
 bool implicitVelocityChange(WorldImpl& w, double t0, double h, bool stiffness);
 void findPairs(WorldImpl& w);              // broad_phase.cpp     origin.md §7
+// Keeps the broad phase's pair list between steps (PairCache, broad_phase.h) for this process; on
+// by default. Off rebuilds every step: the same pairs, for tests.
+void usePairCache(bool on);
 void narrowPhase(WorldImpl& w);            // narrow_phase.cpp    origin.md §7
 void solveContacts(WorldImpl& w);          // contact_solver.cpp  origin.md §8–10, calls softStep
 void softStep(WorldImpl& w);               // soft_step.cpp       the contacts in w.soft_solved

@@ -114,6 +114,7 @@ struct WorldImpl {
   std::vector<Vec2> world_vertices, world_normals;  // every polygon placed in the world this step
   std::vector<uint32_t> polygon_offset;             // per slot: where its polygon starts in them
   std::vector<BodyPair> pairs;
+  PairCache pair_cache;  // broad_phase.cpp
   std::vector<Contact> contacts;           // this step's, sorted by (a, b)
   std::vector<uint32_t> solved;            // indices of the contacts sequential impulses work on
   std::vector<uint32_t> soft_solved;       // indices of the contacts the soft step works on

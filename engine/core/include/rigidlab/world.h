@@ -154,6 +154,7 @@ struct StepStats {
   int pairs = 0, contacts = 0, contact_points = 0;
   long force_evaluations = 0;  // calls of Force::evaluate in this step
   int ccd_sweeps = 0, ccd_hits = 0;  // fast bodies swept against static ones, and those stopped
+  bool pairs_reused = false;  // the broad phase filtered the kept pair list instead of rebuilding
   int rk4_handovers = 0;  // intervals RK4 left to semi-implicit Euler: a damper too stiff for it
   double total_ms() const { return integrate_ms + broad_phase_ms + narrow_phase_ms + solve_ms + correct_ms + finish_ms; }
 };
