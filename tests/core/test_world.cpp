@@ -391,3 +391,22 @@ TEST_CASE("sleeping: forces that may change keep their bodies awake; springs at 
   w.setSleeping(false);
   CHECK(w.body(hanging).awake);
 }
+
+TEST_CASE("bodies: a mass or inertia whose inverse is not finite is refused, naming the input") {
+  World w;
+  BodyDef d;
+  d.shape = makeBox(1.0, 1.0);
+  d.mass = 4.9e-324;  // denormal: 1 / m = inf
+  CHECK(test::errorOf([&] { w.createBody(d); }) ==
+        "mass and moment of inertia must be finite with finite inverses, got 5e-324 kg and 0 kg·m² (from mass 5e-324 "
+        "and the shape's size)");
+  d.mass.reset();
+  d.density = 1e308;
+  d.shape = makeBox(10.0, 10.0);  // 1e310 kg overflows
+  CHECK(test::errorOf([&] { w.createBody(d); }).ends_with("got inf kg and inf kg·m² (from density 1e+308 and the shape's size)"));
+  d.density = 1.0;
+  const BodyId b = w.createBody(d);
+  CHECK(test::errorOf([&] { w.setMass(b, 1e-320); }).ends_with("(from mass 1e-320 and the shape's size)"));
+  CHECK(w.body(b).mass == doctest::Approx(100.0));  // unchanged
+  CHECK(w.bodyCount() == 1);
+}

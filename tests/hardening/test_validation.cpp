@@ -181,12 +181,18 @@ TEST_CASE("validation: every option of every add_* function, given every pool va
         const std::string source = scene(replace(f.call, std::string(o.name) + " = " + v.lua));
         CAPTURE(source);
         const std::string m = messageOf(source, 2);
-        const bool extreme_size = (std::string(o.name) == "width" || std::string(o.name) == "height") &&
-                                  finiteNumber(v) && (v.x < 1e-6 || v.x > 1e6);
+        const std::string name = o.name;
+        const bool size_or_mass = name == "width" || name == "height" || name == "radius" || name == "mass" ||
+                                  name == "density";
+        const bool side = name == "width" || name == "height";
+        const bool extreme_size = size_or_mass && finiteNumber(v) && (side || v.x > 0.0) && (v.x < 1e-6 || v.x > 1e6);
         if (extreme_size) {
-          // A box the core cannot represent (width/height beyond 1e8 : 1) is refused naming a side.
-          CHECK((m == "" || (m.starts_with("test.lua:4: add_box: ") && clean(m) &&
-                             (m.find("width") != std::string::npos || m.find("height") != std::string::npos))));
+          // A box the core cannot represent (width/height beyond 1e8 : 1) is refused naming a side;
+          // a body whose mass or inertia (or their inverses) would not be finite (radius 1e-300,
+          // mass 1e308 on a small triangle) naming its mass.
+          CHECK((m == "" || (m.starts_with("test.lua:4: " + std::string(f.name) + ": ") && clean(m) &&
+                             (m.find("width") != std::string::npos || m.find("height") != std::string::npos ||
+                              m.find(": mass and moment of inertia must be finite") != std::string::npos))));
         } else if (valid(o.accepts, v)) {
           CHECK(m == "");
           ++accepted;

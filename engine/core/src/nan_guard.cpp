@@ -13,7 +13,9 @@ namespace rigidlab {
 namespace {
 
 bool finiteState(const Body& b) {
-  return isFinite(b.center) && std::isfinite(b.angle) && isFinite(b.velocity) && std::isfinite(b.angular_velocity);
+  // The origin too: a centre near 1e308 plus the centroid offset can overflow it (fuzz_world).
+  return isFinite(b.center) && std::isfinite(b.angle) && isFinite(b.velocity) && std::isfinite(b.angular_velocity) &&
+         isFinite(b.xf.p);
 }
 
 std::string cause(const WorldImpl& w, uint32_t slot, const char* stage) {
@@ -32,7 +34,20 @@ void guardNonFinite(WorldImpl& w, const char* stage) {
   for (uint32_t i = 0; i < w.bodies.size(); ++i) {
     if (!w.alive[i]) continue;
     Body& b = w.bodies[i];
-    if (b.isStatic() || (finiteState(b) && w.force_fault[i] < 0)) continue;
+    if (b.isStatic()) {
+      // A static body never moves during a step, but a stage's update scaled by its zero inverse
+      // mass is NaN when the update overflowed (0 · ∞; found by fuzz_world with bodies near 1e308):
+      // put it back as it was.
+      if (!finiteState(b)) {
+        b.center = w.start_center[i];
+        b.angle = w.start_angle[i];
+        b.velocity = Vec2::Zero();
+        b.angular_velocity = 0.0;
+        WorldImpl::syncTransform(b);
+      }
+      continue;
+    }
+    if (finiteState(b) && w.force_fault[i] < 0) continue;
     w.incidents.push_back({b.uid, b.name, w.step_count + 1, w.clock.t, cause(w, i, stage)});
     b.center = w.start_center[i];
     b.angle = w.start_angle[i];

@@ -270,13 +270,14 @@ struct WideBody {
 
 // Four rows of four doubles to four columns (a 4×4 transpose): unpacks and lane swaps, which for
 // AVX2 are a few instructions, where reading the fields one by one into vectors takes an insert each.
+// __builtin_shufflevector: the spelling GCC (12 and later) and clang share.
 [[gnu::always_inline]] inline void transpose(V r0, V r1, V r2, V r3, V& c0, V& c1, V& c2, V& c3) {
-  const V t0 = __builtin_shuffle(r0, r1, M{0, 4, 2, 6}), t1 = __builtin_shuffle(r0, r1, M{1, 5, 3, 7});
-  const V t2 = __builtin_shuffle(r2, r3, M{0, 4, 2, 6}), t3 = __builtin_shuffle(r2, r3, M{1, 5, 3, 7});
-  c0 = __builtin_shuffle(t0, t2, M{0, 1, 4, 5});
-  c1 = __builtin_shuffle(t1, t3, M{0, 1, 4, 5});
-  c2 = __builtin_shuffle(t0, t2, M{2, 3, 6, 7});
-  c3 = __builtin_shuffle(t1, t3, M{2, 3, 6, 7});
+  const V t0 = __builtin_shufflevector(r0, r1, 0, 4, 2, 6), t1 = __builtin_shufflevector(r0, r1, 1, 5, 3, 7);
+  const V t2 = __builtin_shufflevector(r2, r3, 0, 4, 2, 6), t3 = __builtin_shufflevector(r2, r3, 1, 5, 3, 7);
+  c0 = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
+  c1 = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
+  c2 = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
+  c3 = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
 }
 
 // Four consecutive fields of a SoftBody, from the field `first` on.

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "rigidlab/error.h"
 #include "stages.h"
@@ -277,8 +278,16 @@ Shape validatedShape(const Shape& s) {
   return makePolygon(s.vertices);  // re-validates and normalises a hand-built polygon
 }
 
-void setMassData(Body& b, double density) {
+// `field` and `value`: the input the density came from, for the error message.
+void setMassData(Body& b, double density, const char* field, double value) {
   const MassData md = computeMass(b.shape, density);
+  // A mass or inertia whose inverse is not finite (a denormal mass: 1/4.9e-324 = inf) or that
+  // overflowed (density 1e308 on a large shape) would reach the solver as ∞ or 0·∞ = NaN.
+  const auto usable = [](double x) { return std::isfinite(x) && x > 0.0 && std::isfinite(1.0 / x); };
+  if (!usable(md.mass) || !usable(md.inertia))
+    throw InputError(field, "mass and moment of inertia must be finite with finite inverses, got " +
+                                formatNumber(md.mass) + " kg and " + formatNumber(md.inertia) + " kg·m² (from " + field +
+                                " " + formatNumber(value) + " and the shape's size)");
   b.density = density;
   b.area = md.area;
   b.mass = md.mass;
@@ -334,10 +343,11 @@ BodyId World::createBody(const BodyDef& def) {
   if (def.mass) {
     requirePositive("mass", *def.mass);
     density = *def.mass / computeMass(b.shape, 1.0).area;
+    setMassData(b, density, "mass", *def.mass);
   } else {
     requirePositive("density", density);
+    setMassData(b, density, "density", density);
   }
-  setMassData(b, density);
   b.angle = angle;
   b.xf = {position, Rot::fromAngle(angle)};
   b.center = b.xf.apply(b.local_center);
@@ -448,7 +458,7 @@ void World::setType(BodyId id, BodyType type) {
     b.velocity = Vec2::Zero();
     b.angular_velocity = 0.0;
   }
-  setMassData(b, b.density);
+  setMassData(b, b.density, "density", b.density);  // valid when the body was made
 }
 
 void World::setMass(BodyId id, double mass) {
@@ -456,7 +466,7 @@ void World::setMass(BodyId id, double mass) {
   Body& b = impl_->get(id);
   impl_->wakeIsland(id.index);
   requirePositive("mass", mass);
-  setMassData(b, mass / b.area);
+  setMassData(b, mass / b.area, "mass", mass);  // refuses before changing anything
 }
 
 void World::setMaterial(BodyId id, const Material& m) {
