@@ -84,8 +84,8 @@ bool isMoving(const WorldImpl& w, uint32_t i) { return w.isActive(i); }  // dyna
 // h·c_ω/I > 2.5 in this interval.
 bool dampingTooStiffForRk4(WorldImpl& w, double t0, double h) {
   constexpr double kLimit = 2.5;
-  auto& rate = w.damping_rate;
-  rate.assign(w.bodies.size(), Force::DampingRate{});
+  auto& rate = w.damping_sum;
+  rate.assign(w.bodies.size(), WorldImpl::DampingSum{});
   bool any = false;
   for (const ForceEntry& f : w.forces) {
     if (!isActive(f, t0)) continue;
@@ -93,16 +93,16 @@ bool dampingTooStiffForRk4(WorldImpl& w, double t0, double h) {
     if (d.linear == 0.0 && d.angular_a == 0.0 && d.angular_b == 0.0) continue;
     any = true;
     rate[f.a.index].linear += d.linear;
-    rate[f.a.index].angular_a += d.angular_a;
+    rate[f.a.index].angular += d.angular_a;
     if (f.b.isNull()) continue;
     rate[f.b.index].linear += d.linear;
-    rate[f.b.index].angular_a += d.angular_b;  // per slot, angular_a holds the body's own sum
+    rate[f.b.index].angular += d.angular_b;
   }
   if (!any) return false;
   for (uint32_t i = 0; i < rate.size(); ++i) {
     if (!isMoving(w, i)) continue;
     const Body& b = w.bodies[i];
-    if (h * rate[i].linear * b.inv_mass > kLimit || h * rate[i].angular_a * b.inv_inertia > kLimit) return true;
+    if (h * rate[i].linear * b.inv_mass > kLimit || h * rate[i].angular * b.inv_inertia > kLimit) return true;
   }
   return false;
 }

@@ -28,6 +28,16 @@ std::string cause(const WorldImpl& w, uint32_t slot, const char* stage) {
   return std::string("its state became non-finite in ") + stage + (forces.empty() ? "" : " (forces on it: " + forces + ")");
 }
 
+// Back to the state at the start of the step, at rest.
+void putBack(WorldImpl& w, uint32_t i) {
+  Body& b = w.bodies[i];
+  b.center = w.start_center[i];
+  b.angle = w.start_angle[i];
+  b.velocity = Vec2::Zero();
+  b.angular_velocity = 0.0;
+  WorldImpl::syncTransform(b);
+}
+
 }  // namespace
 
 void guardNonFinite(WorldImpl& w, const char* stage) {
@@ -38,26 +48,16 @@ void guardNonFinite(WorldImpl& w, const char* stage) {
       // A static body never moves during a step, but a stage's update scaled by its zero inverse
       // mass is NaN when the update overflowed (0 · ∞; found by fuzz_world with bodies near 1e308):
       // put it back as it was.
-      if (!finiteState(b)) {
-        b.center = w.start_center[i];
-        b.angle = w.start_angle[i];
-        b.velocity = Vec2::Zero();
-        b.angular_velocity = 0.0;
-        WorldImpl::syncTransform(b);
-      }
+      if (!finiteState(b)) putBack(w, i);
       continue;
     }
     if (finiteState(b) && w.force_fault[i] < 0) continue;
     w.incidents.push_back({b.uid, b.name, w.step_count + 1, w.clock.t, cause(w, i, stage)});
-    b.center = w.start_center[i];
-    b.angle = w.start_angle[i];
-    b.velocity = Vec2::Zero();
-    b.angular_velocity = 0.0;
+    putBack(w, i);
     b.type = BodyType::Static;
     b.inv_mass = 0.0;
     b.inv_inertia = 0.0;
     b.frozen = true;
-    WorldImpl::syncTransform(b);
   }
 }
 

@@ -62,7 +62,10 @@ struct WorldImpl {
   std::vector<Vec2> start_center;     // per slot: state at the start of the step, to undo a failed step
   std::vector<double> start_angle;
   std::vector<double> breakpoints;    // force expiry times inside the current step
-  std::vector<Force::DampingRate> damping_rate;  // per slot: summed over its forces (integrator.cpp)
+  struct DampingSum {  // integrator.cpp: a body's Force::dampingRate summed over its forces
+    double linear = 0.0, angular = 0.0;
+  };
+  std::vector<DampingSum> damping_sum;  // per slot
   std::vector<int32_t> force_fault;   // per slot: index of a force that returned a non-finite value, or −1
   struct ImplicitScratch {  // implicit_solve.cpp
     std::vector<int> row;     // per slot: row of the body in the system, −1 if not an unknown
