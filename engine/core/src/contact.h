@@ -94,8 +94,8 @@ struct SoftBody {
   double im, ii;       // inverse mass and inertia; 0 for static and sleeping bodies
 };
 
-struct SoftKick {  // a velocity change of a body
-  double vx, vy, w;
+struct SoftKick {  // a velocity change of a body; four doubles, so the vector passes read and write it whole
+  double vx, vy, w, unused;
 };
 
 // Contacts solved side by side: kSoftLanes contacts of one colour, which share no moving body
@@ -109,9 +109,9 @@ struct SoftLanes {
   uint32_t a[L], b[L];  // body slots
   uint8_t count[L];     // contact points; 0 for an empty lane
   uint8_t block[L];     // two points solved together: K = [[k[0], k12], [k12, k[1]]]
-  uint8_t acted[L];     // some impulse was non-zero during the step
   uint8_t bounce[L];    // restitution > 0: record impact speeds
   bool serial;          // lanes may share a body (contacts left over by the colouring): one by one
+  int64_t acted[L];     // not 0: some impulse was non-zero during the step (a vector mask, or'ed per pass)
   double nx[L], ny[L];
   double bias_rate[L], bias_floor[L];  // softness: push velocity = max(β s, floor)
   double k12[L];
@@ -119,6 +119,8 @@ struct SoftLanes {
   double rax[2][L], ray[2][L], rbx[2][L], rby[2][L];  // anchors: the point from each centre at detection [m]
   double base[2][L];                   // separation at detection − (r_B − r_A)·n [m]
   double k[2][L];                      // K = 1/m_n = 1/m_A + 1/m_B + (r_A×n)²/I_A + (r_B×n)²/I_B
+  double inv_k[2][L], inv_kg[2][L];    // 1/K and 1/(K + γ)
+  double inv_det[L];                   // block contacts: 1/det K (the relax pass's matrix)
   double tangent_mass[2][L], friction[2][L];
   double pn[2][L], pt[2][L];           // impulses of the current sub-step, warm-started [N·s]
 };

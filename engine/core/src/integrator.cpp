@@ -109,12 +109,18 @@ bool dampingTooStiffForRk4(WorldImpl& w, double t0, double h) {
 
 void integrateInterval(WorldImpl& w, double t0, double h) {
   const uint32_t n = static_cast<uint32_t>(w.bodies.size());
-  for (uint32_t i = 0; i < n; ++i)
-    if (w.alive[i]) w.states[i] = WorldImpl::stateOf(w.bodies[i]);
+  bool any_force = false, any_dependent = false;
+  for (const ForceEntry& f : w.forces) {
+    any_force |= isActive(f, t0);
+    any_dependent |= isActive(f, t0) && f.force->dependsOnState();
+  }
+  // The states are what forces read (ForceInput); gravity alone needs none, and filling them costs
+  // a sine and a cosine per body (a tenth of the step's integration in a pile of boxes).
+  if (any_force)
+    for (uint32_t i = 0; i < n; ++i)
+      if (w.alive[i]) w.states[i] = WorldImpl::stateOf(w.bodies[i]);
 
-  bool any_dependent = false;
   std::fill(w.const_wrenches.begin(), w.const_wrenches.end(), Wrench{});
-  for (const ForceEntry& f : w.forces) any_dependent |= isActive(f, t0) && f.force->dependsOnState();
   evaluateForces(w, t0, t0, false, w.const_wrenches);
 
   // All forces at time t on the current w.states → w.wrenches.

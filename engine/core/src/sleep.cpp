@@ -62,17 +62,18 @@ void updateSleep(WorldImpl& w) {
   // step's push-out, limited to contact_push_speed) is still separating it. Letting it sleep would
   // freeze the overlap (boxes spawned half inside each other slept with 4.9 cm left; stability
   // case deep_overlap).
+  // The same walk over the contacts links their bodies into islands (a large pile's contacts do not
+  // stay in the cache between two walks).
+  w.island_parent.resize(n);
+  for (uint32_t i = 0; i < n; ++i) w.island_parent[i] = i;
   for (const Contact& c : w.contacts) {
+    link(w, c.a, c.b);
     double deepest = 0.0;
     for (int k = 0; k < c.count; ++k) deepest = std::min(deepest, c.points[k].separation);
     if (deepest >= -(c.slop + kSleepOverlapMargin)) continue;
     w.bodies[c.a].sleep_time = 0.0;
     w.bodies[c.b].sleep_time = 0.0;
   }
-
-  w.island_parent.resize(n);
-  for (uint32_t i = 0; i < n; ++i) w.island_parent[i] = i;
-  for (const Contact& c : w.contacts) link(w, c.a, c.b);
   for (const ForceEntry& f : w.forces)
     if (f.alive && !f.b.isNull()) link(w, f.a.index, f.b.index);
 

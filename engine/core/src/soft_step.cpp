@@ -141,7 +141,7 @@ inline void solveContact(std::vector<SoftBody>& bodies, SoftLanes& c, int l, con
   SoftBody a = bodies[c.a[l]], b = bodies[c.b[l]];
   const double nx = c.nx[l], ny = c.ny[l];
   Anchor r[N];
-  double pn[N], vn[N], bias[N], g[N], k[N];
+  double pn[N], vn[N], bias[N], g[N], k[N], inv_m[N];
   for (int i = 0; i < N; ++i) {
     r[i] = anchorOf(c, i, l);
     pn[i] = c.pn[i][l];
@@ -153,6 +153,7 @@ inline void solveContact(std::vector<SoftBody>& bodies, SoftLanes& c, int l, con
     const double push = kSoft ? std::max(c.bias_rate[l] * s, c.bias_floor[l]) : 0.0;
     bias[i] = gap ? s * ctx.inv_h : push;
     g[i] = gap || !kSoft ? 0.0 : c.g[i][l];
+    inv_m[i] = gap || !kSoft ? c.inv_k[i][l] : c.inv_kg[i][l];  // 1/(K + γ)
     vn[i] = relative(a, b, r[i], nx, ny);
   }
   if (N == 2 && c.block[l]) {
@@ -168,9 +169,9 @@ inline void solveContact(std::vector<SoftBody>& bodies, SoftLanes& c, int l, con
     const double q1 = vn[0] + bias[0] - (k[0] * p1 + k12 * p2);
     const double q2 = vn[N - 1] + bias[N - 1] - (k12 * p1 + k[N - 1] * p2);
     const double m11 = k[0] + g[0], m22 = k[N - 1] + g[N - 1];
-    const double inv_det = 1.0 / (m11 * m22 - k12 * k12);
+    const double inv_det = kSoft ? 1.0 / (m11 * m22 - k12 * k12) : c.inv_det[l];
     const double both1 = (k12 * q2 - m22 * q1) * inv_det, both2 = (k12 * q1 - m11 * q2) * inv_det;
-    const double only1 = -q1 / m11, only2 = -q2 / m22;
+    const double only1 = -q1 * inv_m[0], only2 = -q2 * inv_m[N - 1];
     const bool fits_both = (both1 >= 0.0) & (both2 >= 0.0);
     const bool fits_first = (only1 >= 0.0) & (k12 * only1 + q2 >= 0.0);
     const bool fits_second = (only2 >= 0.0) & (k12 * only2 + q1 >= 0.0);
@@ -187,7 +188,7 @@ inline void solveContact(std::vector<SoftBody>& bodies, SoftLanes& c, int l, con
     // One point, or two whose K is ill-conditioned: one after the other.
     for (int i = 0; i < N; ++i) {
       const double v = i == 0 ? vn[0] : relative(a, b, r[i], nx, ny);
-      const double total = std::max(pn[i] - (v + bias[i] + g[i] * pn[i]) / (k[i] + g[i]), 0.0);
+      const double total = std::max(pn[i] - (v + bias[i] + g[i] * pn[i]) * inv_m[i], 0.0);
       const double lambda = total - pn[i];
       pn[i] = total;
       apply(a, b, r[i], lambda * nx, lambda * ny);
@@ -261,6 +262,10 @@ typedef double VU __attribute__((vector_size(8 * L), aligned(8), may_alias));
 inline V load(const double* p) { return *reinterpret_cast<const VU*>(p); }
 inline void store(double* p, V v) { *reinterpret_cast<VU*>(p) = v; }
 inline V splat(double x) { return V{x, x, x, x}; }
+typedef long long MU __attribute__((vector_size(8 * L), aligned(8), may_alias));
+static_assert(sizeof(long long) == sizeof(int64_t));
+inline M loadMask(const int64_t* p) { return *reinterpret_cast<const MU*>(p); }
+inline void storeMask(int64_t* p, M m) { *reinterpret_cast<MU*>(p) = m; }
 inline V vmax(V a, V b) { return a < b ? b : a; }  // std::max
 inline V vmin(V a, V b) { return b < a ? b : a; }  // std::min
 
@@ -295,15 +300,16 @@ static_assert(sizeof(SoftBody) == 9 * sizeof(double), "gather reads a SoftBody a
   return v;
 }
 
-// Writes the velocities back, except to bodies that cannot move (several lanes may share one).
-inline void scatter(std::vector<SoftBody>& bodies, const uint32_t index[L], const WideBody& v) {
-  for (int l = 0; l < L; ++l) {
-    if (v.im[l] == 0.0 && v.ii[l] == 0.0) continue;
-    SoftBody& b = bodies[index[l]];
-    b.vx = v.vx[l];
-    b.vy = v.vy[l];
-    b.w = v.w[l];
-  }
+// Writes the velocities back as whole rows of four doubles (vx vy w dx), so that the next gather
+// of the same body reads what one store wrote (three scalar stores followed by a 32-byte load
+// cannot be forwarded and stall). Bodies that cannot move, which several lanes may share, keep
+// velocity zero (their impulses change nothing unless they are not finite).
+[[gnu::always_inline]] inline void scatter(std::vector<SoftBody>& bodies, const uint32_t index[L], const WideBody& v) {
+  const V zero = splat(0.0);
+  const M still = (v.im == zero) & (v.ii == zero);
+  V r[4];
+  transpose(still ? zero : v.vx, still ? zero : v.vy, still ? zero : v.w, v.dx, r[0], r[1], r[2], r[3]);
+  for (int l = 0; l < L; ++l) store(&bodies[index[l]].vx, r[l]);
 }
 
 struct WideAnchor {
@@ -329,14 +335,25 @@ struct WideKick {
   V vx, vy, w;
 };
 
+static_assert(sizeof(SoftKick) == 4 * sizeof(double), "the kicks are read and written as rows of four doubles");
 [[gnu::always_inline]] inline WideKick gatherKick(const std::vector<SoftKick>& kicks, const uint32_t index[L]) {
-  const SoftKick &k0 = kicks[index[0]], &k1 = kicks[index[1]], &k2 = kicks[index[2]], &k3 = kicks[index[3]];
-  return {V{k0.vx, k1.vx, k2.vx, k3.vx}, V{k0.vy, k1.vy, k2.vy, k3.vy}, V{k0.w, k1.w, k2.w, k3.w}};
+  WideKick k;
+  V unused;
+  transpose(load(&kicks[index[0]].vx), load(&kicks[index[1]].vx), load(&kicks[index[2]].vx), load(&kicks[index[3]].vx), k.vx, k.vy,
+            k.w, unused);
+  return k;
+}
+
+[[gnu::always_inline]] inline void scatterKick(std::vector<SoftKick>& kicks, const uint32_t index[L], const WideKick& k) {
+  V r[4];
+  transpose(k.vx, k.vy, k.w, splat(0.0), r[0], r[1], r[2], r[3]);
+  for (int l = 0; l < L; ++l) store(&kicks[index[l]].vx, r[l]);
 }
 
 // addWarmStart on the four lanes at once, with the same operations in the same order per lane
-// (point 1 only where there are two points). Movable bodies appear in one lane at most; the
-// immovable ones, which several lanes may share, are added to one lane after the other as before.
+// (point 1 only where there are two points). Movable bodies appear in one lane at most. The
+// immovable ones, which several lanes may share, get whatever the last lane writes: their warm
+// start is never applied (the kick loop runs over the moving bodies only).
 [[gnu::always_inline]] inline void warmStartWide(const WideBody& a, const WideBody& b, const SoftLanes& c, M two, V nx, V ny,
                                                   const V pn[2], const V pt[2], std::vector<SoftKick>& warm) {
   const V tx = ny, ty = -nx;
@@ -354,32 +371,8 @@ struct WideKick {
       wb = {two ? nb.vx : wb.vx, two ? nb.vy : wb.vy, two ? nb.w : wb.w};
     }
   }
-  for (int l = 0; l < L; ++l) {
-    if (c.count[l] == 0) continue;
-    const double lx = c.nx[l], ly = c.ny[l], ltx = ly, lty = -lx;
-    SoftKick& ka = warm[c.a[l]];
-    if (a.im[l] != 0.0 || a.ii[l] != 0.0) {
-      ka = {wa.vx[l], wa.vy[l], wa.w[l]};
-    } else {
-      for (int i = 0; i < c.count[l]; ++i) {
-        const double px = pn[i][l] * lx + pt[i][l] * ltx, py = pn[i][l] * ly + pt[i][l] * lty;
-        ka.vx -= a.im[l] * px;
-        ka.vy -= a.im[l] * py;
-        ka.w -= a.ii[l] * (c.rax[i][l] * py - c.ray[i][l] * px);
-      }
-    }
-    SoftKick& kb = warm[c.b[l]];
-    if (b.im[l] != 0.0 || b.ii[l] != 0.0) {
-      kb = {wb.vx[l], wb.vy[l], wb.w[l]};
-    } else {
-      for (int i = 0; i < c.count[l]; ++i) {
-        const double px = pn[i][l] * lx + pt[i][l] * ltx, py = pn[i][l] * ly + pt[i][l] * lty;
-        kb.vx += b.im[l] * px;
-        kb.vy += b.im[l] * py;
-        kb.w += b.ii[l] * (c.rbx[i][l] * py - c.rby[i][l] * px);
-      }
-    }
-  }
+  scatterKick(warm, c.a, wa);
+  scatterKick(warm, c.b, wb);
 }
 
 template <bool kSoft>
@@ -388,7 +381,7 @@ template <bool kSoft>
   const V nx = load(c.nx), ny = load(c.ny);
   const V zero = splat(0.0);
   WideAnchor r[2];
-  V pn[2], vn[2], bias[2], g[2];
+  V pn[2], vn[2], bias[2], g[2], inv_m[2];
   // K is read outside the loop: in it, GCC turns the two loads into a memcpy of 16-byte moves
   // through the stack, and each 32-byte read of the result stalls (as for the impulses below).
   const V k[2] = {load(c.k[0]), load(c.k[1])};
@@ -401,6 +394,7 @@ template <bool kSoft>
     const V push = kSoft ? vmax(load(c.bias_rate) * s, load(c.bias_floor)) : zero;
     bias[i] = gap ? s * splat(ctx.inv_h) : push;
     g[i] = kSoft ? (gap ? zero : load(c.g[i])) : zero;
+    inv_m[i] = kSoft ? (gap ? load(c.inv_k[i]) : load(c.inv_kg[i])) : load(c.inv_k[i]);  // 1/(K + γ)
     vn[i] = relativeWide(a, b, r[i], nx, ny);
   }
   // Block solution (see solveContact), and the sequential one: point 0, then point 1 seeing point
@@ -411,18 +405,20 @@ template <bool kSoft>
   const V q1 = vn[0] + bias[0] - (k[0] * p1 + k12 * p2);
   const V q2 = vn[1] + bias[1] - (k12 * p1 + k[1] * p2);
   const V m11 = k[0] + g[0], m22 = k[1] + g[1];
-  const V inv_det = splat(1.0) / (m11 * m22 - k12 * k12);
+  // The relax pass's matrix is the same in every pass (no compliance): its inverse determinant was
+  // computed once, as the reciprocals 1/(K + γ). Divisions are the longest links of this chain.
+  const V inv_det = kSoft ? splat(1.0) / (m11 * m22 - k12 * k12) : load(c.inv_det);
   const V both1 = (k12 * q2 - m22 * q1) * inv_det, both2 = (k12 * q1 - m11 * q2) * inv_det;
-  const V only1 = -q1 / m11, only2 = -q2 / m22;
+  const V only1 = -q1 * inv_m[0], only2 = -q2 * inv_m[1];
   const M fits_both = (both1 >= zero) & (both2 >= zero);
   const M fits_first = (only1 >= zero) & (k12 * only1 + q2 >= zero);
   const M fits_second = (only2 >= zero) & (k12 * only2 + q1 >= zero);
   const M fits_none = (q1 >= zero) & (q2 >= zero);
   const V block1 = fits_both ? both1 : fits_first ? only1 : (fits_second | fits_none) ? zero : p1;
   const V block2 = fits_both ? both2 : fits_first ? zero : fits_second ? only2 : fits_none ? zero : p2;
-  const V seq1 = vmax(p1 - (vn[0] + bias[0] + g[0] * p1) / (k[0] + g[0]), zero);
+  const V seq1 = vmax(p1 - (vn[0] + bias[0] + g[0] * p1) * inv_m[0], zero);
   const V vn2 = vn[1] + k12 * (seq1 - p1);
-  const V seq2 = vmax(p2 - (vn2 + bias[1] + g[1] * p2) / (k[1] + g[1]), zero);
+  const V seq2 = vmax(p2 - (vn2 + bias[1] + g[1] * p2) * inv_m[1], zero);
   const M block = M{c.block[0], c.block[1], c.block[2], c.block[3]} != 0;
   const V x1 = block ? block1 : seq1, x2 = block ? block2 : seq2;
   applyWide(a, b, r[0], (x1 - p1) * nx, (x1 - p1) * ny);
@@ -457,7 +453,8 @@ template <bool kSoft>
   // Only real points count (a neutral one's impulses are zero unless the velocities are not finite).
   const M two = M{c.count[0], c.count[1], c.count[2], c.count[3]} == 2;
   const M acted = (pn[0] != zero) | (pt[0] != zero) | (two & ((pn[1] != zero) | (pt[1] != zero)));
-  for (int l = 0; l < L; ++l) c.acted[l] |= c.count[l] != 0 && acted[l] != 0;
+  // Empty lanes may record anything: the write-back reads real contacts only.
+  storeMask(c.acted, loadMask(c.acted) | acted);
   if (!kSoft) {
     if (ctx.warm) warmStartWide(a, b, c, two, nx, ny, pn, pt, *ctx.warm);
     SoftTotals& t = *ctx.totals;
@@ -643,7 +640,7 @@ void softStep(WorldImpl& w) {
   bodies[n] = {0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0};
   kick.resize(n);
   angle.resize(n);
-  warm.assign(n + 1, SoftKick{0.0, 0.0, 0.0});
+  warm.assign(n + 1, SoftKick{0.0, 0.0, 0.0, 0.0});
   moved.assign(n, 0);
   for (const SolvedRef& r : w.soft_refs) {
     if (r.active & 1) moved[r.a] = 1;
@@ -653,7 +650,7 @@ void softStep(WorldImpl& w) {
   for (uint32_t i = 0; i < n; ++i) {
     if (!moved[i]) {
       bodies[i] = {0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0};  // static, asleep or not in contact
-      kick[i] = {0.0, 0.0, 0.0};
+      kick[i] = {0.0, 0.0, 0.0, 0.0};
       continue;
     }
     list.push_back(i);
@@ -664,7 +661,7 @@ void softStep(WorldImpl& w) {
     angle[i] = w.start_angle[i] - b.angle;
     bodies[i] = {v0.x(), v0.y(), w0, d.x(), d.y(), std::cos(angle[i]), std::sin(angle[i]), b.inv_mass, b.inv_inertia};
     kick[i] = {(b.velocity.x() - v0.x()) / substeps, (b.velocity.y() - v0.y()) / substeps,
-               (b.angular_velocity - w0) / substeps};
+               (b.angular_velocity - w0) / substeps, 0.0};
   }
 
   // Constraints, in groups of L lanes.
@@ -684,7 +681,7 @@ void softStep(WorldImpl& w) {
   const auto neutral = [](SoftLanes& sc, int i, int l) {
     sc.rax[i][l] = sc.ray[i][l] = sc.rbx[i][l] = sc.rby[i][l] = 0.0;
     sc.base[i][l] = 1e30;
-    sc.k[i][l] = 1.0;
+    sc.k[i][l] = sc.inv_k[i][l] = sc.inv_kg[i][l] = 1.0;
     sc.g[i][l] = sc.tangent_mass[i][l] = sc.friction[i][l] = sc.pn[i][l] = sc.pt[i][l] = 0.0;
   };
   for (size_t g = 0; g < groups.size(); ++g)
@@ -692,10 +689,11 @@ void softStep(WorldImpl& w) {
       if (source[g * L + l] == UINT32_MAX) {
         SoftLanes& sc = groups[g];
         sc.a[l] = sc.b[l] = n;
-        sc.count[l] = sc.block[l] = sc.bounce[l] = sc.acted[l] = 0;
+        sc.count[l] = sc.block[l] = sc.bounce[l] = 0;
+        sc.acted[l] = 0;
         sc.nx[l] = 0.0;
         sc.ny[l] = 1.0;
-        sc.bias_rate[l] = sc.bias_floor[l] = sc.k12[l] = 0.0;
+        sc.bias_rate[l] = sc.bias_floor[l] = sc.k12[l] = sc.inv_det[l] = 0.0;
         neutral(sc, 0, l);
         neutral(sc, 1, l);
       }
@@ -741,6 +739,8 @@ void softStep(WorldImpl& w) {
         sc.k[i][l] = kn;
         sc.tangent_mass[i][l] = kt > 0.0 ? 1.0 / kt : 0.0;
         sc.g[i][l] = kn * s.impulse_scale / s.mass_scale;  // γ = K/a₂
+        sc.inv_k[i][l] = 1.0 / kn;
+        sc.inv_kg[i][l] = 1.0 / (kn + sc.g[i][l]);
         // f_s or f_d from the slip at the start of the step (origin.md §10); the bodies still hold
         // the velocities of the start of the step.
         const double slip = relative(a, b, anchorOf(sc, i, l), tan.x(), tan.y());
@@ -756,7 +756,7 @@ void softStep(WorldImpl& w) {
       // Two points: k12 = 1/m_A + 1/m_B + (r_A1×n)(r_A2×n)/I_A + (r_B1×n)(r_B2×n)/I_B; solved
       // together when K is well conditioned (Box2D 2.4's rule, as contact_solver.cpp).
       sc.block[l] = 0;
-      sc.k12[l] = 0.0;
+      sc.k12[l] = sc.inv_det[l] = 0.0;
       if (c.count == 1) neutral(sc, 1, l);
       if (c.count == 2) {
         const double rn1a = sc.rax[0][l] * nrm.y() - sc.ray[0][l] * nrm.x();
@@ -766,6 +766,7 @@ void softStep(WorldImpl& w) {
         sc.k12[l] = a.im + b.im + a.ii * rn1a * rn2a + b.ii * rn1b * rn2b;
         const double k11 = sc.k[0][l], k22 = sc.k[1][l];
         sc.block[l] = k11 * k11 < 1000.0 * (k11 * k22 - sc.k12[l] * sc.k12[l]);
+        if (sc.block[l]) sc.inv_det[l] = 1.0 / (k11 * k22 - sc.k12[l] * sc.k12[l]);
       }
       // The first sub-step's warm start: the impulses carried over from the previous step.
       addWarmStart(a, b, sc, l, warm[c.a], warm[c.b]);
@@ -779,7 +780,7 @@ void softStep(WorldImpl& w) {
       b.vx += kick[i].vx + warm[i].vx;
       b.vy += kick[i].vy + warm[i].vy;
       b.w += kick[i].w + warm[i].w;
-      warm[i] = {0.0, 0.0, 0.0};
+      warm[i] = {0.0, 0.0, 0.0, 0.0};
     }
     pass<true>(bodies, groups, tallies, totals, inv_h, step, nullptr);
     for (uint32_t i : list) {  // move
