@@ -45,7 +45,7 @@ const Golden kGolden[] = {
     {"scripts/scenes/free_fall.lua", "0e7c53772421e76e"},
     {"scripts/scenes/newtons_cradle.lua", "de7fa7ac2fe04a5d"},
     {"scripts/scenes/playground.lua", "b775aafef0929308"},
-    {"scripts/scenes/pyramid.lua", "1b5a7f35c60988b3"},
+    {"scripts/scenes/pyramid.lua", "87f5db409082856a"},
     {"scripts/scenes/spring_chain.lua", "a6006e467d57afe5"},
     {"scripts/scenes/spring_pendulum.lua", "4356e1808a338acf"},
     {"tests/scenes/lua_api.lua", "c081df7e46e063da"},

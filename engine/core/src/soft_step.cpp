@@ -72,6 +72,20 @@ Softness makeSoft(double hertz, double zeta, double h) {
   return {omega / a1, a2 * a3, a3};
 }
 
+// A contact's softness as the passes use it. There are two (SoftLanes::stiff picks one), so the
+// contacts store a flag rather than these four numbers each: the lanes are streamed from memory in
+// every pass, 4 MB of them for a pile of 5 000 boxes.
+struct Level {
+  double bias_rate;   // β
+  double bias_floor;  // the push −β s is at most WorldDef::contact_push_speed
+  double compliance;  // γ/K = 1/a₂
+  double mass_scale;  // K/(K + γ) = a₂a₃
+};
+
+Level levelOf(const Softness& s, double push_speed) {
+  return {s.bias_rate, -push_speed / s.mass_scale, s.impulse_scale / s.mass_scale, s.mass_scale};
+}
+
 // A contact point's anchors: the point from each centre at detection [m].
 struct Anchor {
   double rax, ray, rbx, rby;
@@ -109,6 +123,7 @@ inline double separation(const SoftBody& a, const SoftBody& b, const Anchor& r, 
 struct PassContext {
   double inv_h;
   int substep;
+  const Level* levels;           // [0] soft, [1] stiff (a static or sleeping body)
   SoftTally* tallies;            // of this group's lanes
   SoftTotals* totals;            // of this group
   std::vector<SoftKick>* warm;   // relax pass, not the last sub-step: the next warm start
@@ -150,10 +165,11 @@ inline void solveContact(std::vector<SoftBody>& bodies, SoftLanes& c, int l, con
     // apart by the soft pass. Selected without branches (see below).
     const double s = separation(a, b, r[i], c.base[i][l], nx, ny);
     const bool gap = s > 0.0;
-    const double push = kSoft ? std::max(c.bias_rate[l] * s, c.bias_floor[l]) : 0.0;
+    const Level& lv = ctx.levels[c.stiff[l] != 0];
+    const double push = kSoft ? std::max(lv.bias_rate * s, lv.bias_floor) : 0.0;
     bias[i] = gap ? s * ctx.inv_h : push;
-    g[i] = gap || !kSoft ? 0.0 : c.g[i][l];
-    inv_m[i] = gap || !kSoft ? c.inv_k[i][l] : c.inv_kg[i][l];  // 1/(K + γ)
+    g[i] = gap || !kSoft ? 0.0 : k[i] * lv.compliance;
+    inv_m[i] = gap || !kSoft ? c.inv_k[i][l] : c.inv_k[i][l] * lv.mass_scale;  // 1/(K + γ)
     vn[i] = relative(a, b, r[i], nx, ny);
   }
   if (N == 2 && c.block[l]) {
@@ -385,16 +401,26 @@ template <bool kSoft>
   // K is read outside the loop: in it, GCC turns the two loads into a memcpy of 16-byte moves
   // through the stack, and each 32-byte read of the result stalls (as for the impulses below).
   const V k[2] = {load(c.k[0]), load(c.k[1])};
+  V rate = zero, floor = zero, compliance = zero, mass_scale = zero;  // the lanes' Level
+  if (kSoft) {
+    const M stiff = loadMask(c.stiff);
+    const Level &soft = ctx.levels[0], &hard = ctx.levels[1];
+    rate = stiff ? splat(hard.bias_rate) : splat(soft.bias_rate);
+    floor = stiff ? splat(hard.bias_floor) : splat(soft.bias_floor);
+    compliance = stiff ? splat(hard.compliance) : splat(soft.compliance);
+    mass_scale = stiff ? splat(hard.mass_scale) : splat(soft.mass_scale);
+  }
   for (int i = 0; i < 2; ++i) {
     r[i] = {load(c.rax[i]), load(c.ray[i]), load(c.rbx[i]), load(c.rby[i])};
     const V sx = b.dx - a.dx + (b.qc * r[i].rbx - b.qs * r[i].rby) - (a.qc * r[i].rax - a.qs * r[i].ray);
     const V sy = b.dy - a.dy + (b.qs * r[i].rbx + b.qc * r[i].rby) - (a.qs * r[i].rax + a.qc * r[i].ray);
     const V s = load(c.base[i]) + sx * nx + sy * ny;
     const M gap = s > zero;
-    const V push = kSoft ? vmax(load(c.bias_rate) * s, load(c.bias_floor)) : zero;
+    const V push = kSoft ? vmax(rate * s, floor) : zero;
     bias[i] = gap ? s * splat(ctx.inv_h) : push;
-    g[i] = kSoft ? (gap ? zero : load(c.g[i])) : zero;
-    inv_m[i] = kSoft ? (gap ? load(c.inv_k[i]) : load(c.inv_kg[i])) : load(c.inv_k[i]);  // 1/(K + γ)
+    g[i] = kSoft ? (gap ? zero : k[i] * compliance) : zero;
+    const V inv_k = load(c.inv_k[i]);
+    inv_m[i] = kSoft ? (gap ? inv_k : inv_k * mass_scale) : inv_k;  // 1/(K + γ)
     vn[i] = relativeWide(a, b, r[i], nx, ny);
   }
   // Block solution (see solveContact), and the sequential one: point 0, then point 1 seeing point
@@ -468,9 +494,10 @@ template <bool kSoft>
 // One pass over all groups.
 template <bool kSoft>
 [[gnu::always_inline]] inline void passBody(std::vector<SoftBody>& bodies, std::vector<SoftLanes>& groups, std::vector<SoftTally>& tallies,
-                                            std::vector<SoftTotals>& totals, double inv_h, int substep, std::vector<SoftKick>* warm) {
+                                            std::vector<SoftTotals>& totals, double inv_h, int substep, std::vector<SoftKick>* warm,
+                                            const Level* levels) {
   for (size_t g = 0; g < groups.size(); ++g) {
-    const PassContext ctx{inv_h, substep, &tallies[g * L], &totals[g], warm};
+    const PassContext ctx{inv_h, substep, levels, &tallies[g * L], &totals[g], warm};
     if (groups[g].serial) {
       solveGroup<kSoft>(bodies, groups[g], ctx);
     } else {
@@ -485,14 +512,16 @@ template <bool kSoft>
 // tests/core/test_soft_step.cpp checks.
 template <bool kSoft>
 __attribute__((target("avx2"))) void passAvx2(std::vector<SoftBody>& bodies, std::vector<SoftLanes>& groups, std::vector<SoftTally>& tallies,
-                                              std::vector<SoftTotals>& totals, double inv_h, int substep, std::vector<SoftKick>* warm) {
-  passBody<kSoft>(bodies, groups, tallies, totals, inv_h, substep, warm);
+                                              std::vector<SoftTotals>& totals, double inv_h, int substep, std::vector<SoftKick>* warm,
+                  const Level* levels) {
+  passBody<kSoft>(bodies, groups, tallies, totals, inv_h, substep, warm, levels);
 }
 
 template <bool kSoft>
 void passBaseline(std::vector<SoftBody>& bodies, std::vector<SoftLanes>& groups, std::vector<SoftTally>& tallies,
-                  std::vector<SoftTotals>& totals, double inv_h, int substep, std::vector<SoftKick>* warm) {
-  passBody<kSoft>(bodies, groups, tallies, totals, inv_h, substep, warm);
+                  std::vector<SoftTotals>& totals, double inv_h, int substep, std::vector<SoftKick>* warm,
+                  const Level* levels) {
+  passBody<kSoft>(bodies, groups, tallies, totals, inv_h, substep, warm, levels);
 }
 
 bool& avx2Selected() {
@@ -502,11 +531,11 @@ bool& avx2Selected() {
 
 template <bool kSoft>
 void pass(std::vector<SoftBody>& bodies, std::vector<SoftLanes>& groups, std::vector<SoftTally>& tallies, std::vector<SoftTotals>& totals,
-          double inv_h, int substep, std::vector<SoftKick>* warm) {
+          double inv_h, int substep, std::vector<SoftKick>* warm, const Level* levels) {
   if (avx2Selected()) {
-    passAvx2<kSoft>(bodies, groups, tallies, totals, inv_h, substep, warm);
+    passAvx2<kSoft>(bodies, groups, tallies, totals, inv_h, substep, warm, levels);
   } else {
-    passBaseline<kSoft>(bodies, groups, tallies, totals, inv_h, substep, warm);
+    passBaseline<kSoft>(bodies, groups, tallies, totals, inv_h, substep, warm, levels);
   }
 }
 
@@ -669,6 +698,7 @@ void softStep(WorldImpl& w) {
   const double hertz = std::min(w.def.contact_hertz, 0.125 * inv_h);
   const Softness soft = makeSoft(hertz, w.def.contact_damping_ratio, h);
   const Softness stiff = makeSoft(2.0 * hertz, w.def.contact_damping_ratio, h);
+  const Level levels[2] = {levelOf(soft, w.def.contact_push_speed), levelOf(stiff, w.def.contact_push_speed)};
   auto& groups = w.soft_lanes;
   auto& tallies = w.soft_tally;
   const auto& source = w.soft_source;
@@ -681,8 +711,8 @@ void softStep(WorldImpl& w) {
   const auto neutral = [](SoftLanes& sc, int i, int l) {
     sc.rax[i][l] = sc.ray[i][l] = sc.rbx[i][l] = sc.rby[i][l] = 0.0;
     sc.base[i][l] = 1e30;
-    sc.k[i][l] = sc.inv_k[i][l] = sc.inv_kg[i][l] = 1.0;
-    sc.g[i][l] = sc.tangent_mass[i][l] = sc.friction[i][l] = sc.pn[i][l] = sc.pt[i][l] = 0.0;
+    sc.k[i][l] = sc.inv_k[i][l] = 1.0;
+    sc.tangent_mass[i][l] = sc.friction[i][l] = sc.pn[i][l] = sc.pt[i][l] = 0.0;
   };
   for (size_t g = 0; g < groups.size(); ++g)
     for (int l = 0; l < L; ++l)
@@ -693,7 +723,8 @@ void softStep(WorldImpl& w) {
         sc.acted[l] = 0;
         sc.nx[l] = 0.0;
         sc.ny[l] = 1.0;
-        sc.bias_rate[l] = sc.bias_floor[l] = sc.k12[l] = sc.inv_det[l] = 0.0;
+        sc.stiff[l] = 0;
+        sc.k12[l] = sc.inv_det[l] = 0.0;
         neutral(sc, 0, l);
         neutral(sc, 1, l);
       }
@@ -711,7 +742,6 @@ void softStep(WorldImpl& w) {
       const SoftBody& a = bodies[c.a];
       const SoftBody& b = bodies[c.b];
       const bool fixed = (a.im == 0.0 && a.ii == 0.0) || (b.im == 0.0 && b.ii == 0.0);
-      const Softness& s = fixed ? stiff : soft;
       SoftTally& t = tallies[g * L + l];
       sc.a[l] = c.a;
       sc.b[l] = c.b;
@@ -719,8 +749,7 @@ void softStep(WorldImpl& w) {
       sc.bounce[l] = c.restitution > 0.0;
       sc.nx[l] = c.normal.x();
       sc.ny[l] = c.normal.y();
-      sc.bias_rate[l] = s.bias_rate;
-      sc.bias_floor[l] = -w.def.contact_push_speed / s.mass_scale;  // the push, −β s ≤ push speed
+      sc.stiff[l] = fixed ? -1 : 0;
       t.restitution = c.restitution;
       const Vec2 nrm = c.normal, tan = cross(c.normal, 1.0);
       const Vec2 ca = w.bodies[c.a].center, cb = w.bodies[c.b].center;
@@ -738,9 +767,7 @@ void softStep(WorldImpl& w) {
         const double kt = a.im + b.im + a.ii * rta * rta + b.ii * rtb * rtb;
         sc.k[i][l] = kn;
         sc.tangent_mass[i][l] = kt > 0.0 ? 1.0 / kt : 0.0;
-        sc.g[i][l] = kn * s.impulse_scale / s.mass_scale;  // γ = K/a₂
         sc.inv_k[i][l] = 1.0 / kn;
-        sc.inv_kg[i][l] = 1.0 / (kn + sc.g[i][l]);
         // f_s or f_d from the slip at the start of the step (origin.md §10); the bodies still hold
         // the velocities of the start of the step.
         const double slip = relative(a, b, anchorOf(sc, i, l), tan.x(), tan.y());
@@ -782,7 +809,7 @@ void softStep(WorldImpl& w) {
       b.w += kick[i].w + warm[i].w;
       warm[i] = {0.0, 0.0, 0.0, 0.0};
     }
-    pass<true>(bodies, groups, tallies, totals, inv_h, step, nullptr);
+    pass<true>(bodies, groups, tallies, totals, inv_h, step, nullptr, levels);
     for (uint32_t i : list) {  // move
       SoftBody& b = bodies[i];
       b.dx += h * b.vx;
@@ -795,7 +822,7 @@ void softStep(WorldImpl& w) {
       b.qs = s * inv;
     }
     std::vector<SoftKick>* next = step + 1 < substeps ? &warm : nullptr;
-    pass<false>(bodies, groups, tallies, totals, inv_h, step, next);
+    pass<false>(bodies, groups, tallies, totals, inv_h, step, next, levels);
   }
   for (size_t g = 0; g < groups.size(); ++g)
     for (int l = 0; l < L; ++l)
