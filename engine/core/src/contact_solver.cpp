@@ -49,6 +49,14 @@ void prepare(WorldImpl& w, Contact& c, SolverPrepared& out) {
   const Body& b = w.bodies[c.b];
   const Vec2 n = c.normal;
   const Vec2 t = cross(n, 1.0);
+  if (w.def.position_correction == PositionCorrection::NonlinearGaussSeidel) {
+    out.local_normal = a.xf.q.applyInverse(n);
+    for (int i = 0; i < c.count; ++i) {
+      const ContactPoint& cp = c.points[i];
+      out.local_a[i] = a.xf.applyInverse(cp.point - 0.5 * cp.separation * n);
+      out.local_b[i] = b.xf.applyInverse(cp.point + 0.5 * cp.separation * n);
+    }
+  }
   for (int i = 0; i < c.count; ++i) {
     ContactPoint& cp = c.points[i];
     cp.ra = cp.point - a.center;
@@ -274,21 +282,20 @@ void chooseSolvers(WorldImpl& w) {
     for (uint32_t i = 0; i < parent.size(); ++i) parent[i] = i;
     points.assign(w.bodies.size(), 0);
   }
-  // A large pile's contacts and bodies are far beyond the cache and this loop waits on them (41 %
-  // of solveContacts' own time in one load, perf): ask for the contact 16 ahead and the bodies of
-  // the one 8 ahead (the flags isActive reads).
-  const size_t count = w.contacts.size();
+  // The contacts' keys (narrow_phase.cpp), not the contacts: a large pile's contacts are far beyond
+  // the cache. Its bodies are too, and this loop waited on them (41 % of solveContacts' own time in
+  // one load, perf): ask for the bodies of the contact 8 ahead (the flags isActive reads).
+  const size_t count = w.contact_keys.size();
   const auto prefetchBody = [&](uint32_t slot) {
     __builtin_prefetch(&w.bodies[slot].type);
     __builtin_prefetch(&w.bodies[slot].awake);
   };
   for (uint32_t k = 0; k < count; ++k) {
-    if (k + 16 < count) __builtin_prefetch(&w.contacts[k + 16]);
     if (k + 8 < count) {
-      prefetchBody(w.contacts[k + 8].a);
-      prefetchBody(w.contacts[k + 8].b);
+      prefetchBody(w.contact_keys[k + 8].a);
+      prefetchBody(w.contact_keys[k + 8].b);
     }
-    const Contact& c = w.contacts[k];
+    const ContactKey& c = w.contact_keys[k];
     const bool a = w.isActive(c.a), b = w.isActive(c.b);
     if (!a && !b) continue;
     w.solved.push_back(k);

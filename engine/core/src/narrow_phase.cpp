@@ -17,11 +17,18 @@ namespace {
 
 const Contact kBlank{};
 
+ContactKey keyOf(const Contact& c) {
+  double deepest = 0.0;
+  for (int k = 0; k < c.count; ++k) deepest = std::min(deepest, c.points[k].separation);
+  return {c.a, c.b, static_cast<uint8_t>(c.count), deepest < -(c.slop + kDeepOverlapMargin)};
+}
+
 }  // namespace
 
 void narrowPhase(WorldImpl& w) {
   std::swap(w.contacts, w.previous_contacts);
   w.contacts.clear();
+  w.contact_keys.clear();
   size_t old = 0;
   const auto& prev = w.previous_contacts;
   for (const BodyPair& pair : w.pairs) {
@@ -37,7 +44,10 @@ void narrowPhase(WorldImpl& w) {
     if (!w.isActive(pair.a) && !w.isActive(pair.b)) {
       // Both asleep (or one static): nothing moved, so the contact is as it was; keep it with its
       // impulses for when the island wakes.
-      if (had) w.contacts.push_back(prev[old]);
+      if (had) {
+        w.contacts.push_back(prev[old]);
+        w.contact_keys.push_back(keyOf(prev[old]));
+      }
       continue;
     }
     const auto placed = [&](uint32_t slot, const Body& body) {
@@ -66,15 +76,11 @@ void narrowPhase(WorldImpl& w) {
     c.b = pair.b;
     c.normal = m.normal;
     c.count = m.count;
-    c.local_normal = a.xf.q.applyInverse(m.normal);
     for (int i = 0; i < m.count; ++i) {
       ContactPoint& cp = c.points[i];
       cp.point = m.points[i].point;
       cp.separation = m.points[i].separation;
       cp.id = m.points[i].id;
-      // The two surface points, p ∓ (s/2) n, fixed to their bodies for the position pass.
-      cp.local_a = a.xf.applyInverse(cp.point - 0.5 * cp.separation * m.normal);
-      cp.local_b = b.xf.applyInverse(cp.point + 0.5 * cp.separation * m.normal);
     }
     // Penetration the position pass leaves alone: WorldDef::allowed_penetration, but at most a tenth
     // of the smaller body's size, so centimetre bodies are not allowed to sink half their height.
@@ -82,6 +88,7 @@ void narrowPhase(WorldImpl& w) {
     c.restitution = std::max(a.material.restitution, b.material.restitution);
     c.friction = std::sqrt(a.material.friction * b.material.friction);
     c.static_friction = std::sqrt(a.material.static_friction * b.material.static_friction);
+    w.contact_keys.push_back(keyOf(c));
     if (had) {
       for (int i = 0; i < c.count; ++i)
         for (int j = 0; j < prev[old].count; ++j)

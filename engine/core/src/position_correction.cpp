@@ -87,16 +87,16 @@ void nonlinearGaussSeidel(WorldImpl& w) {
   constexpr double kMaxCorrection = 0.2;  // m per point and pass, so a deep overlap separates gradually
   for (int it = 0; it < w.def.position_iterations; ++it) {
     double deepest = 0.0;
-    for (uint32_t k : w.solved) {
-      const Contact& c = w.contacts[k];
+    for (size_t j = 0; j < w.solved.size(); ++j) {
+      const Contact& c = w.contacts[w.solved[j]];
+      const SolverPrepared& local = w.solver_prepared[j];  // the points fixed to their bodies (contact_solver.cpp)
       Body& a = w.bodies[c.a];
       Body& b = w.bodies[c.b];
       const double ima = invMass(w, c.a), imb = invMass(w, c.b), iia = invInertia(w, c.a), iib = invInertia(w, c.b);
       if (ima + imb == 0.0) continue;
       for (int i = 0; i < c.count; ++i) {
-        const ContactPoint& cp = c.points[i];
-        const Vec2 n = a.xf.q.apply(c.local_normal);
-        const Vec2 pa = a.xf.apply(cp.local_a), pb = b.xf.apply(cp.local_b);
+        const Vec2 n = a.xf.q.apply(local.local_normal);
+        const Vec2 pa = a.xf.apply(local.local_a[i]), pb = b.xf.apply(local.local_b[i]);
         const double separation = (pb - pa).dot(n);
         deepest = std::min(deepest, separation);
         const double correction = std::clamp(beta * (separation + c.slop), -kMaxCorrection, 0.0);

@@ -12,8 +12,6 @@
 namespace rigidlab {
 namespace {
 
-constexpr double kSleepOverlapMargin = 0.005;  // [m] overlap beyond the contact's slop that keeps bodies awake
-
 uint32_t root(std::vector<uint32_t>& parent, uint32_t i) {
   while (parent[i] != i) {
     parent[i] = parent[parent[i]];  // path halving
@@ -23,8 +21,7 @@ uint32_t root(std::vector<uint32_t>& parent, uint32_t i) {
 }
 
 void link(WorldImpl& w, uint32_t a, uint32_t b) {
-  const auto isDynamic = [&](uint32_t i) { return w.alive[i] && !w.bodies[i].isStatic(); };
-  if (!isDynamic(a) || !isDynamic(b)) return;
+  if (!w.island_dynamic[a] || !w.island_dynamic[b]) return;  // static bodies link nothing
   const uint32_t ra = root(w.island_parent, a), rb = root(w.island_parent, b);
   if (ra != rb) w.island_parent[std::max(ra, rb)] = std::min(ra, rb);  // the smaller slot is the root
 }
@@ -62,15 +59,15 @@ void updateSleep(WorldImpl& w) {
   // step's push-out, limited to contact_push_speed) is still separating it. Letting it sleep would
   // freeze the overlap (boxes spawned half inside each other slept with 4.9 cm left; stability
   // case deep_overlap).
-  // The same walk over the contacts links their bodies into islands (a large pile's contacts do not
-  // stay in the cache between two walks).
+  // The same walk over the contacts (their keys, contact.h ContactKey: deeper than slop +
+  // kDeepOverlapMargin) links their bodies into islands.
   w.island_parent.resize(n);
   for (uint32_t i = 0; i < n; ++i) w.island_parent[i] = i;
-  for (const Contact& c : w.contacts) {
+  w.island_dynamic.resize(n);
+  for (uint32_t i = 0; i < n; ++i) w.island_dynamic[i] = w.alive[i] && !w.bodies[i].isStatic();
+  for (const ContactKey& c : w.contact_keys) {
     link(w, c.a, c.b);
-    double deepest = 0.0;
-    for (int k = 0; k < c.count; ++k) deepest = std::min(deepest, c.points[k].separation);
-    if (deepest >= -(c.slop + kSleepOverlapMargin)) continue;
+    if (!c.deep_overlap) continue;
     w.bodies[c.a].sleep_time = 0.0;
     w.bodies[c.b].sleep_time = 0.0;
   }

@@ -395,6 +395,7 @@ void World::destroyBody(BodyId id) {
   const auto refersToSlot = [&](const Contact& c) { return c.a == id.index || c.b == id.index; };
   std::erase_if(w.contacts, refersToSlot);
   std::erase_if(w.previous_contacts, refersToSlot);
+  std::erase_if(w.contact_keys, [&](const ContactKey& c) { return c.a == id.index || c.b == id.index; });  // in step
 }
 
 bool World::isValid(BodyId id) const { return impl_->isLive(id); }

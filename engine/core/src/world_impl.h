@@ -119,6 +119,7 @@ struct WorldImpl {
   std::vector<BodyPair> pairs;
   PairCache pair_cache;  // broad_phase.cpp
   std::vector<Contact> contacts;           // this step's, sorted by (a, b)
+  std::vector<ContactKey> contact_keys;    // the same contacts' bodies (contact.h)
   std::vector<uint32_t> solved;            // indices of the contacts sequential impulses work on
   std::vector<uint32_t> soft_solved;       // indices of the contacts the soft step works on
   std::vector<SolvedRef> solved_refs;      // per entry of solved: its bodies (contact_solver.cpp)
@@ -130,6 +131,7 @@ struct WorldImpl {
   // every edit, contact and force makes.
   std::vector<uint32_t> island;
   std::vector<uint32_t> island_parent;  // union–find scratch
+  std::vector<char> island_dynamic;     // per slot: alive and not static (sleep.cpp)
   std::vector<uint32_t> island_points;  // per island root: contact points (contact_solver.cpp)
   std::vector<double> island_sleep;     // per island root: the shortest sleep time of its members
   std::vector<char> keep_awake;         // per slot: a force that forbids sleep acts on it
