@@ -428,23 +428,30 @@ template <bool kSoft>
   // The impulses are read here, not into pn[] in the loop above: pn[] is indexed by lane below, so
   // it lives on the stack, and GCC filled it with 16-byte copies that each 32-byte read waited on.
   const V k12 = load(c.k12), p1 = load(c.pn[0]), p2 = load(c.pn[1]);
-  const V q1 = vn[0] + bias[0] - (k[0] * p1 + k12 * p2);
-  const V q2 = vn[1] + bias[1] - (k12 * p1 + k[1] * p2);
-  const V m11 = k[0] + g[0], m22 = k[1] + g[1];
-  // The relax pass's matrix is the same in every pass (no compliance): its inverse determinant was
-  // computed once, as the reciprocals 1/(K + γ). Divisions are the longest links of this chain.
-  const V inv_det = kSoft ? splat(1.0) / (m11 * m22 - k12 * k12) : load(c.inv_det);
-  const V both1 = (k12 * q2 - m22 * q1) * inv_det, both2 = (k12 * q1 - m11 * q2) * inv_det;
-  const V only1 = -q1 * inv_m[0], only2 = -q2 * inv_m[1];
-  const M fits_both = (both1 >= zero) & (both2 >= zero);
-  const M fits_first = (only1 >= zero) & (k12 * only1 + q2 >= zero);
-  const M fits_second = (only2 >= zero) & (k12 * only2 + q1 >= zero);
-  const M fits_none = (q1 >= zero) & (q2 >= zero);
-  const V block1 = fits_both ? both1 : fits_first ? only1 : (fits_second | fits_none) ? zero : p1;
-  const V block2 = fits_both ? both2 : fits_first ? zero : fits_second ? only2 : fits_none ? zero : p2;
-  const V seq1 = vmax(p1 - (vn[0] + bias[0] + g[0] * p1) * inv_m[0], zero);
-  const V vn2 = vn[1] + k12 * (seq1 - p1);
-  const V seq2 = vmax(p2 - (vn2 + bias[1] + g[1] * p2) * inv_m[1], zero);
+  // Each solution only where some lane takes it (SoftLanes::blocks): piles of boxes are nearly all
+  // block contacts, piles of circles all one-point contacts.
+  V block1 = zero, block2 = zero, seq1 = zero, seq2 = zero;
+  if (c.blocks != SoftLanes::kNoBlock) {
+    const V q1 = vn[0] + bias[0] - (k[0] * p1 + k12 * p2);
+    const V q2 = vn[1] + bias[1] - (k12 * p1 + k[1] * p2);
+    const V m11 = k[0] + g[0], m22 = k[1] + g[1];
+    // The relax pass's matrix is the same in every pass (no compliance): its inverse determinant
+    // was computed once, as the reciprocals 1/(K + γ). Divisions are the longest links of this chain.
+    const V inv_det = kSoft ? splat(1.0) / (m11 * m22 - k12 * k12) : load(c.inv_det);
+    const V both1 = (k12 * q2 - m22 * q1) * inv_det, both2 = (k12 * q1 - m11 * q2) * inv_det;
+    const V only1 = -q1 * inv_m[0], only2 = -q2 * inv_m[1];
+    const M fits_both = (both1 >= zero) & (both2 >= zero);
+    const M fits_first = (only1 >= zero) & (k12 * only1 + q2 >= zero);
+    const M fits_second = (only2 >= zero) & (k12 * only2 + q1 >= zero);
+    const M fits_none = (q1 >= zero) & (q2 >= zero);
+    block1 = fits_both ? both1 : fits_first ? only1 : (fits_second | fits_none) ? zero : p1;
+    block2 = fits_both ? both2 : fits_first ? zero : fits_second ? only2 : fits_none ? zero : p2;
+  }
+  if (c.blocks != SoftLanes::kAllBlock) {
+    seq1 = vmax(p1 - (vn[0] + bias[0] + g[0] * p1) * inv_m[0], zero);
+    const V vn2 = vn[1] + k12 * (seq1 - p1);
+    seq2 = vmax(p2 - (vn2 + bias[1] + g[1] * p2) * inv_m[1], zero);
+  }
   const M block = M{c.block[0], c.block[1], c.block[2], c.block[3]} != 0;
   const V x1 = block ? block1 : seq1, x2 = block ? block2 : seq2;
   applyWide(a, b, r[0], (x1 - p1) * nx, (x1 - p1) * ny);
@@ -719,7 +726,8 @@ void softStep(WorldImpl& w) {
       if (source[g * L + l] == UINT32_MAX) {
         SoftLanes& sc = groups[g];
         sc.a[l] = sc.b[l] = n;
-        sc.count[l] = sc.block[l] = sc.bounce[l] = 0;
+        sc.count[l] = sc.bounce[l] = 0;
+        sc.block[l] = 1;  // either solution gives an empty lane zero; this one lets a group skip the other
         sc.acted[l] = 0;
         sc.nx[l] = 0.0;
         sc.ny[l] = 1.0;
@@ -798,6 +806,11 @@ void softStep(WorldImpl& w) {
       // The first sub-step's warm start: the impulses carried over from the previous step.
       addWarmStart(a, b, sc, l, warm[c.a], warm[c.b]);
     }
+  }
+
+  for (SoftLanes& sc : groups) {
+    const int blocks = (sc.block[0] != 0) + (sc.block[1] != 0) + (sc.block[2] != 0) + (sc.block[3] != 0);
+    sc.blocks = blocks == 0 ? SoftLanes::kNoBlock : blocks == L ? SoftLanes::kAllBlock : SoftLanes::kSomeBlocks;
   }
 
   // Sub-steps.
