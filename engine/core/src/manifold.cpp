@@ -64,6 +64,16 @@ double findMaxSeparation(const WorldPolygon& a, const WorldPolygon& b, int& edge
   return best;
 }
 
+// Clips the segment p[0]–p[1] to the half-plane n·x ≤ offset; false if it lies wholly outside.
+// Inlined: as a lambda GCC called it out of line, a few percent of a pile's narrow phase.
+[[gnu::always_inline]] inline bool clipSegment(Vec2 p[2], const Vec2& plane_normal, double offset) {
+  const double d0 = plane_normal.dot(p[0]) - offset, d1 = plane_normal.dot(p[1]) - offset;
+  if (d0 > 0.0 && d1 > 0.0) return false;
+  if (d0 > 0.0) p[0] = p[0] + (p[1] - p[0]) * (d0 / (d0 - d1));
+  else if (d1 > 0.0) p[1] = p[1] + (p[0] - p[1]) * (d1 / (d1 - d0));
+  return true;
+}
+
 Manifold toWorld(Manifold m, const Transform& xf) {
   m.normal = xf.q.apply(m.normal);
   for (int i = 0; i < m.count; ++i) m.points[i].point = xf.apply(m.points[i].point);
@@ -185,14 +195,7 @@ Manifold collidePolygons(const WorldPolygon& a, const WorldPolygon& b, double ma
   const Vec2 tangent = (r2 - r1).normalized();
   const Vec2 normal(tangent.y(), -tangent.x());  // outward for a counter-clockwise polygon
   Vec2 p[2] = {inc.vertices[inc_edge], inc.vertices[next(inc_edge, inc.count)]};
-  const auto clip = [&](const Vec2& plane_normal, double offset) {
-    const double d0 = plane_normal.dot(p[0]) - offset, d1 = plane_normal.dot(p[1]) - offset;
-    if (d0 > 0.0 && d1 > 0.0) return false;
-    if (d0 > 0.0) p[0] = p[0] + (p[1] - p[0]) * (d0 / (d0 - d1));
-    else if (d1 > 0.0) p[1] = p[1] + (p[0] - p[1]) * (d1 / (d1 - d0));
-    return true;
-  };
-  if (!clip(-tangent, -tangent.dot(r1)) || !clip(tangent, tangent.dot(r2))) return m;
+  if (!clipSegment(p, -tangent, -tangent.dot(r1)) || !clipSegment(p, tangent, tangent.dot(r2))) return m;
 
   const double front = normal.dot(r1);
   m.normal = flip ? Vec2(-normal) : normal;

@@ -17,10 +17,16 @@ namespace {
 
 const Contact kBlank{};
 
-ContactKey keyOf(const Contact& c) {
+// Written field by field in place: returned as a 12-byte value, the key was assembled on the stack
+// in pieces and read back whole, a store-forwarding stall on every contact (perf).
+void addKey(std::vector<ContactKey>& keys, const Contact& c) {
   double deepest = 0.0;
   for (int k = 0; k < c.count; ++k) deepest = std::min(deepest, c.points[k].separation);
-  return {c.a, c.b, static_cast<uint8_t>(c.count), deepest < -(c.slop + kDeepOverlapMargin)};
+  ContactKey& key = keys.emplace_back();
+  key.a = c.a;
+  key.b = c.b;
+  key.count = static_cast<uint8_t>(c.count);
+  key.deep_overlap = deepest < -(c.slop + kDeepOverlapMargin);
 }
 
 }  // namespace
@@ -46,7 +52,7 @@ void narrowPhase(WorldImpl& w) {
       // impulses for when the island wakes.
       if (had) {
         w.contacts.push_back(prev[old]);
-        w.contact_keys.push_back(keyOf(prev[old]));
+        addKey(w.contact_keys, prev[old]);
       }
       continue;
     }
@@ -88,7 +94,7 @@ void narrowPhase(WorldImpl& w) {
     c.restitution = std::max(a.material.restitution, b.material.restitution);
     c.friction = std::sqrt(a.material.friction * b.material.friction);
     c.static_friction = std::sqrt(a.material.static_friction * b.material.static_friction);
-    w.contact_keys.push_back(keyOf(c));
+    addKey(w.contact_keys, c);
     if (had) {
       for (int i = 0; i < c.count; ++i)
         for (int j = 0; j < prev[old].count; ++j)
