@@ -127,6 +127,7 @@ struct SoftLanes {
   bool serial;          // lanes may share a body (contacts left over by the colouring): one by one
   enum : uint8_t { kNoBlock, kSomeBlocks, kAllBlock };
   uint8_t blocks;       // how many lanes are block contacts (empty lanes count as block)
+  uint8_t points;       // the most contact points of any lane
   int64_t acted[L];     // not 0: some impulse was non-zero during the step (a vector mask, or'ed per pass)
   double nx[L], ny[L];
   int64_t stiff[L];     // −1: the stiffer softness (a static or sleeping body), 0: the soft one

@@ -370,11 +370,12 @@ static_assert(sizeof(SoftKick) == 4 * sizeof(double), "the kicks are read and wr
 // (point 1 only where there are two points). Movable bodies appear in one lane at most. The
 // immovable ones, which several lanes may share, get whatever the last lane writes: their warm
 // start is never applied (the kick loop runs over the moving bodies only).
+template <int NP>
 [[gnu::always_inline]] inline void warmStartWide(const WideBody& a, const WideBody& b, const SoftLanes& c, M two, V nx, V ny,
                                                   const V pn[2], const V pt[2], std::vector<SoftKick>& warm) {
   const V tx = ny, ty = -nx;
   WideKick wa = gatherKick(warm, c.a), wb = gatherKick(warm, c.b);
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < NP; ++i) {
     const V px = pn[i] * nx + pt[i] * tx, py = pn[i] * ny + pt[i] * ty;
     const V rax = load(c.rax[i]), ray = load(c.ray[i]), rbx = load(c.rbx[i]), rby = load(c.rby[i]);
     const WideKick na{wa.vx - a.im * px, wa.vy - a.im * py, wa.w - a.ii * (rax * py - ray * px)};
@@ -391,7 +392,9 @@ static_assert(sizeof(SoftKick) == 4 * sizeof(double), "the kicks are read and wr
   scatterKick(warm, c.b, wb);
 }
 
-template <bool kSoft>
+// NP: the most points of any lane (SoftLanes::points); groups of one-point contacts (circles) skip
+// the second point's work, half of the pass.
+template <bool kSoft, int NP>
 [[gnu::always_inline]] inline void solveWide(std::vector<SoftBody>& bodies, SoftLanes& c, const PassContext& ctx) {
   WideBody a = gather(bodies, c.a), b = gather(bodies, c.b);
   const V nx = load(c.nx), ny = load(c.ny);
@@ -410,7 +413,7 @@ template <bool kSoft>
     compliance = stiff ? splat(hard.compliance) : splat(soft.compliance);
     mass_scale = stiff ? splat(hard.mass_scale) : splat(soft.mass_scale);
   }
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < NP; ++i) {
     r[i] = {load(c.rax[i]), load(c.ray[i]), load(c.rbx[i]), load(c.rby[i])};
     const V sx = b.dx - a.dx + (b.qc * r[i].rbx - b.qs * r[i].rby) - (a.qc * r[i].rax - a.qs * r[i].ray);
     const V sy = b.dy - a.dy + (b.qs * r[i].rbx + b.qc * r[i].rby) - (a.qs * r[i].rax + a.qc * r[i].ray);
@@ -431,7 +434,7 @@ template <bool kSoft>
   // Each solution only where some lane takes it (SoftLanes::blocks): piles of boxes are nearly all
   // block contacts, piles of circles all one-point contacts.
   V block1 = zero, block2 = zero, seq1 = zero, seq2 = zero;
-  if (c.blocks != SoftLanes::kNoBlock) {
+  if (NP == 2 && c.blocks != SoftLanes::kNoBlock) {
     const V q1 = vn[0] + bias[0] - (k[0] * p1 + k12 * p2);
     const V q2 = vn[1] + bias[1] - (k12 * p1 + k[1] * p2);
     const V m11 = k[0] + g[0], m22 = k[1] + g[1];
@@ -447,17 +450,21 @@ template <bool kSoft>
     block1 = fits_both ? both1 : fits_first ? only1 : (fits_second | fits_none) ? zero : p1;
     block2 = fits_both ? both2 : fits_first ? zero : fits_second ? only2 : fits_none ? zero : p2;
   }
-  if (c.blocks != SoftLanes::kAllBlock) {
+  if (NP == 1 || c.blocks != SoftLanes::kAllBlock) {
     seq1 = vmax(p1 - (vn[0] + bias[0] + g[0] * p1) * inv_m[0], zero);
-    const V vn2 = vn[1] + k12 * (seq1 - p1);
-    seq2 = vmax(p2 - (vn2 + bias[1] + g[1] * p2) * inv_m[1], zero);
+    if (NP == 2) {
+      const V vn2 = vn[1] + k12 * (seq1 - p1);
+      seq2 = vmax(p2 - (vn2 + bias[1] + g[1] * p2) * inv_m[1], zero);
+    }
   }
   const M block = M{c.block[0], c.block[1], c.block[2], c.block[3]} != 0;
-  const V x1 = block ? block1 : seq1, x2 = block ? block2 : seq2;
+  const V x1 = NP == 1 ? seq1 : (block ? block1 : seq1), x2 = block ? block2 : seq2;
   applyWide(a, b, r[0], (x1 - p1) * nx, (x1 - p1) * ny);
-  applyWide(a, b, r[1], (x2 - p2) * nx, (x2 - p2) * ny);
   pn[0] = x1;
-  pn[1] = x2;
+  if (NP == 2) {
+    applyWide(a, b, r[1], (x2 - p2) * nx, (x2 - p2) * ny);
+    pn[1] = x2;
+  }
   uint32_t bouncing;  // any lane: one test for the common case of none
   std::memcpy(&bouncing, c.bounce, sizeof bouncing);
   if (bouncing != 0) {  // impact speeds, in both passes (see solveContact)
@@ -473,7 +480,7 @@ template <bool kSoft>
   }
   const V tx = ny, ty = -nx;  // t = n × 1
   V pt[2];
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < NP; ++i) {
     const V limit = load(c.friction[i]) * pn[i];
     const V old = load(c.pt[i]);
     pt[i] = vmin(vmax(old - load(c.tangent_mass[i]) * relativeWide(a, b, r[i], tx, ty), -limit), limit);
@@ -485,13 +492,14 @@ template <bool kSoft>
   scatter(bodies, c.b, b);
   // Only real points count (a neutral one's impulses are zero unless the velocities are not finite).
   const M two = M{c.count[0], c.count[1], c.count[2], c.count[3]} == 2;
-  const M acted = (pn[0] != zero) | (pt[0] != zero) | (two & ((pn[1] != zero) | (pt[1] != zero)));
+  M acted = (pn[0] != zero) | (pt[0] != zero);
+  if (NP == 2) acted |= two & ((pn[1] != zero) | (pt[1] != zero));
   // Empty lanes may record anything: the write-back reads real contacts only.
   storeMask(c.acted, loadMask(c.acted) | acted);
   if (!kSoft) {
-    if (ctx.warm) warmStartWide(a, b, c, two, nx, ny, pn, pt, *ctx.warm);
+    if (ctx.warm) warmStartWide<NP>(a, b, c, two, nx, ny, pn, pt, *ctx.warm);
     SoftTotals& t = *ctx.totals;
-    for (int i = 0; i < 2; ++i) {  // each sub-step applies its final impulses in all
+    for (int i = 0; i < NP; ++i) {  // each sub-step applies its final impulses in all
       store(t.n[i], load(t.n[i]) + pn[i]);
       store(t.t[i], load(t.t[i]) + pt[i]);
     }
@@ -507,8 +515,10 @@ template <bool kSoft>
     const PassContext ctx{inv_h, substep, levels, &tallies[g * L], &totals[g], warm};
     if (groups[g].serial) {
       solveGroup<kSoft>(bodies, groups[g], ctx);
+    } else if (groups[g].points <= 1) {
+      solveWide<kSoft, 1>(bodies, groups[g], ctx);
     } else {
-      solveWide<kSoft>(bodies, groups[g], ctx);
+      solveWide<kSoft, 2>(bodies, groups[g], ctx);
     }
   }
 }
@@ -811,6 +821,7 @@ void softStep(WorldImpl& w) {
   for (SoftLanes& sc : groups) {
     const int blocks = (sc.block[0] != 0) + (sc.block[1] != 0) + (sc.block[2] != 0) + (sc.block[3] != 0);
     sc.blocks = blocks == 0 ? SoftLanes::kNoBlock : blocks == L ? SoftLanes::kAllBlock : SoftLanes::kSomeBlocks;
+    sc.points = std::max({sc.count[0], sc.count[1], sc.count[2], sc.count[3]});
   }
 
   // Sub-steps.
