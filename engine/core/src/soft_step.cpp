@@ -768,7 +768,7 @@ void softStep(WorldImpl& w) {
       sc.nx[l] = c.normal.x();
       sc.ny[l] = c.normal.y();
       sc.stiff[l] = fixed ? -1 : 0;
-      t.restitution = c.restitution;
+      if (sc.bounce[l]) t.restitution = c.restitution;  // the tallies are read for bouncing contacts only
       const Vec2 nrm = c.normal, tan = cross(c.normal, 1.0);
       const Vec2 ca = w.bodies[c.a].center, cb = w.bodies[c.b].center;
       const SoftKick ka = kick[c.a], kb = kick[c.b];
@@ -793,6 +793,7 @@ void softStep(WorldImpl& w) {
         sc.pn[i][l] = w.def.warm_starting ? cp.normal_impulse : 0.0;
         sc.pt[i][l] = w.def.warm_starting ? cp.tangent_impulse : 0.0;
         sc.acted[l] |= (sc.pn[i][l] != 0.0) | (sc.pt[i][l] != 0.0);
+        if (!sc.bounce[l]) continue;
         t.approach[i] = 0.0;
         t.impact[i] = -1;
         t.kick[i] = (kb.vx - kb.w * rb.y() - ka.vx + ka.w * ra.y()) * nrm.x() +
