@@ -41,6 +41,17 @@ void WorldImpl::wakeIsland(uint32_t slot) {
 void updateSleep(WorldImpl& w) {
   const uint32_t n = static_cast<uint32_t>(w.bodies.size());
   const double dt = w.dt;
+  if (!w.def.sleeping) {
+    // Nothing sleeps: no islands to find (pay for what you use). Bodies put to sleep before
+    // sleeping was switched off wake; sleep times restart once it is switched on again.
+    for (uint32_t i = 0; i < n; ++i) {
+      Body& b = w.bodies[i];
+      if (!w.alive[i] || b.isStatic()) continue;
+      b.sleep_time = 0.0;
+      b.awake = true;
+    }
+    return;
+  }
   // Forces that keep their bodies awake.
   w.keep_awake.assign(n, 0);
   for (const ForceEntry& f : w.forces) {
