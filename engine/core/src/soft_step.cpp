@@ -506,6 +506,11 @@ template <bool kSoft, int NP>
   }
 }
 
+bool& onePointPass() {
+  static bool on = true;
+  return on;
+}
+
 // One pass over all groups.
 template <bool kSoft>
 [[gnu::always_inline]] inline void passBody(std::vector<SoftBody>& bodies, std::vector<SoftLanes>& groups, std::vector<SoftTally>& tallies,
@@ -515,7 +520,7 @@ template <bool kSoft>
     const PassContext ctx{inv_h, substep, levels, &tallies[g * L], &totals[g], warm};
     if (groups[g].serial) {
       solveGroup<kSoft>(bodies, groups[g], ctx);
-    } else if (groups[g].points <= 1) {
+    } else if (groups[g].points <= 1 && onePointPass()) {
       solveWide<kSoft, 1>(bodies, groups[g], ctx);
     } else {
       solveWide<kSoft, 2>(bodies, groups[g], ctx);
@@ -662,6 +667,8 @@ void buildGroups(WorldImpl& w) {
 }
 
 }  // namespace
+
+void softStepOnePointPass(bool on) { onePointPass() = on; }
 
 bool softStepUseAvx2(bool on) {
   const bool can = __builtin_cpu_supports("avx2");

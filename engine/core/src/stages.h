@@ -21,6 +21,9 @@ void softStep(WorldImpl& w);               // soft_step.cpp       the contacts i
 // Chooses the soft step's AVX2 or baseline passes for this process (by default AVX2 where the
 // processor has it); false if AVX2 was asked for and the processor lacks it. For tests.
 bool softStepUseAvx2(bool on);
+// Lets groups of one-point contacts take the one-point pass (on by default); off runs them through
+// the two-point pass with a neutral second point: the same bits, for tests.
+void softStepOnePointPass(bool on);
 void correctPositions(WorldImpl& w);       // position_correction.cpp  origin.md §9, the contacts in w.solved
 void updateSleep(WorldImpl& w);            // sleep.cpp           islands and sleeping
 void expireForces(WorldImpl& w);           // world.cpp           origin.md §6
