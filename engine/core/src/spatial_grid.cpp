@@ -111,7 +111,8 @@ void GridBroadPhase::findPairs(std::span<const Proxy> proxies, std::vector<BodyP
     const bool far = !(std::abs(lx) < kFar && std::abs(ux) < kFar && std::abs(ly) < kFar && std::abs(uy) < kFar);
     const int64_t x0 = far ? 0 : floorToInt(lx), x1 = far ? 0 : floorToInt(ux);
     const int64_t y0 = far ? 0 : floorToInt(ly), y1 = far ? 0 : floorToInt(uy);
-    if (far || (x1 - x0 + 1) * (y1 - y0 + 1) > kLargeCells) {
+    // The cell count in double: spans up to 2e15 cells a side overflow an int64 product.
+    if (far || static_cast<double>(x1 - x0 + 1) * static_cast<double>(y1 - y0 + 1) > kLargeCells) {
       large_.push_back(i);
       is_large_[i] = 1;
       continue;
