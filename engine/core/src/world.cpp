@@ -297,6 +297,19 @@ void setMassData(Body& b, double density, const char* field, double value) {
   b.inv_inertia = b.isStatic() ? 0.0 : 1.0 / b.inertia;
 }
 
+// Sets the body's transform and centre of mass from its origin and angle. A finite position near
+// the largest double can still put the centre of mass (position + the rotated centre offset) out
+// of range: refused naming position, so that no body starts with a non-finite state (fuzz_world).
+void place(Body& b, const Vec2& position, double angle) {
+  const Transform xf{position, Rot::fromAngle(angle)};
+  const Vec2 center = xf.apply(b.local_center);
+  if (!isFinite(center))
+    throw InputError("position", "position " + formatVec(position) + " puts the centre of mass out of range, at " + formatVec(center));
+  b.angle = angle;
+  b.xf = xf;
+  b.center = center;
+}
+
 Material validatedMaterial(double restitution, double friction, double static_friction) {
   requireNonNegative("restitution", restitution);
   if (restitution > 1.0)
@@ -348,9 +361,7 @@ BodyId World::createBody(const BodyDef& def) {
     requirePositive("density", density);
     setMassData(b, density, "density", density);
   }
-  b.angle = angle;
-  b.xf = {position, Rot::fromAngle(angle)};
-  b.center = b.xf.apply(b.local_center);
+  place(b, position, angle);
   if (!b.isStatic()) {
     b.velocity = requireFinite("velocity", def.velocity);
     b.angular_velocity = requireFinite("angular_velocity", def.angular_velocity);
@@ -428,9 +439,7 @@ void World::setTransform(BodyId id, const Vec2& position, double angle) {
   impl_->wakeIsland(id.index);
   requireFinite("position", position);
   requireFinite("angle", angle);
-  b.angle = angle;
-  b.xf = {position, Rot::fromAngle(angle)};
-  b.center = b.xf.apply(b.local_center);
+  place(b, position, angle);
 }
 
 void World::setVelocity(BodyId id, const Vec2& velocity) {
