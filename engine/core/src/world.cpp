@@ -402,11 +402,12 @@ void World::destroyBody(BodyId id) {
   b.uid = 0;
   w.alive[id.index] = 0;
   w.free_bodies.push_back(id.index);
-  // Drop contacts that refer to the slot, so contacts() never names a dead body.
-  const auto refersToSlot = [&](const Contact& c) { return c.a == id.index || c.b == id.index; };
+  // Drop contacts (and their keys, which stay index for index with them) that refer to the slot,
+  // so contacts() never names a dead body.
+  const auto refersToSlot = [&](const auto& c) { return c.a == id.index || c.b == id.index; };
   std::erase_if(w.contacts, refersToSlot);
   std::erase_if(w.previous_contacts, refersToSlot);
-  std::erase_if(w.contact_keys, [&](const ContactKey& c) { return c.a == id.index || c.b == id.index; });  // in step
+  std::erase_if(w.contact_keys, refersToSlot);
 }
 
 bool World::isValid(BodyId id) const { return impl_->isLive(id); }
