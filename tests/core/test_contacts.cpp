@@ -152,7 +152,7 @@ TEST_CASE("impulses: accumulated normal impulses are ≥ 0 and friction stays in
   for (int step = 0; step < 300; ++step) {
     w.step(1.0 / 60.0);
     for (const ContactInfo& c : w.contacts()) {
-      const double mu = std::sqrt(w.body(c.a).material.static_friction * w.body(c.b).material.static_friction);
+      const double mu = std::sqrt(w.shape(c.shape_a).material.static_friction * w.shape(c.shape_b).material.static_friction);
       for (int i = 0; i < c.count; ++i) {
         REQUIRE(c.normal_impulses[i] >= 0.0);
         REQUIRE(std::abs(c.tangent_impulses[i]) <= mu * c.normal_impulses[i] + 1e-15);

@@ -157,3 +157,122 @@ TEST_CASE("polygon–polygon") {
     CHECK(m.points[0].separation == Approx(-0.1));
   }
 }
+
+// --- Rounded shapes and chains.
+
+TEST_CASE("capsule–circle: the closest point of the core segment, minus both radii") {
+  const Shape cap = makeCapsule({-1, 0}, {1, 0}, 0.25), disc = makeCircle(0.5);
+  SUBCASE("beside the middle") {
+    const Manifold m = collideShapes(cap, at(0, 0), disc, at(0.3, 0.7), 0.0);
+    REQUIRE(m.count == 1);
+    CHECK(m.normal.y() == Approx(1.0));
+    CHECK(m.points[0].separation == Approx(0.7 - 0.75));
+    CHECK(m.points[0].point.y() == Approx(0.5 * (0.25 + 0.2)));  // midway between the surfaces
+  }
+  SUBCASE("past an end: a rounded end") {
+    const Manifold m = collideShapes(cap, at(0, 0), disc, at(1.5, 0.3), 0.0);
+    REQUIRE(m.count == 1);
+    CHECK(m.normal.x() == Approx(0.5 / std::hypot(0.5, 0.3)));
+    CHECK(m.points[0].separation == Approx(std::hypot(0.5, 0.3) - 0.75));
+  }
+  SUBCASE("circle first: the normal still points from A to B") {
+    const Manifold m = collideShapes(disc, at(0.3, 0.7), cap, at(0, 0), 0.0);
+    REQUIRE(m.count == 1);
+    CHECK(m.normal.y() == Approx(-1.0));
+  }
+}
+
+TEST_CASE("capsule–capsule: parallel overlap gives two points, crossing gives one") {
+  const Shape a = makeCapsule({-1, 0}, {1, 0}, 0.2), b = makeCapsule({-0.5, 0}, {0.5, 0}, 0.2);
+  SUBCASE("lying on top, shifted") {
+    const Manifold m = collideShapes(a, at(0, 0), b, at(0.8, 0.38), 0.0);
+    REQUIRE(m.count == 2);
+    CHECK(m.normal.y() == Approx(1.0));
+    for (int i = 0; i < 2; ++i) CHECK(m.points[i].separation == Approx(-0.02));
+    // b's core 0.3 … 1.3 clipped to a's 1.0 end: points at x = 0.3 and x = 1.0.
+    const double x0 = std::min(m.points[0].point.x(), m.points[1].point.x());
+    const double x1 = std::max(m.points[0].point.x(), m.points[1].point.x());
+    CHECK(x0 == Approx(0.3));
+    CHECK(x1 == Approx(1.0));
+  }
+  SUBCASE("crossed at right angles: one point") {
+    // b's core runs up from (0.2, 0.1): 0.1 from a's core, both radii 0.2.
+    const Manifold m = collideShapes(a, at(0, 0), b, at(0.2, 0.6, std::numbers::pi / 2), 0.01);
+    REQUIRE(m.count == 1);
+    CHECK(m.normal.y() == Approx(1.0));
+    CHECK(m.points[0].separation == Approx(-0.3));
+    CHECK(m.points[0].point.x() == Approx(0.2));
+  }
+}
+
+TEST_CASE("polygon–capsule and segment–polygon: a capsule lying on a box has two points") {
+  const Shape box = makeBox(4, 1), cap = makeCapsule({-1, 0}, {1, 0}, 0.25);
+  const Manifold m = collideShapes(box, at(0, 0), cap, at(0.5, 0.74), 0.0);
+  REQUIRE(m.count == 2);
+  CHECK(m.normal.y() == Approx(1.0));
+  for (int i = 0; i < 2; ++i) CHECK(m.points[i].separation == Approx(-0.01));
+  // A box resting on a ground segment.
+  const Shape ground = makeSegment({-5, 0}, {5, 0});
+  const Shape small = makeBox(1, 1);
+  const Manifold g = collideShapes(ground, at(0, 0), small, at(0, 0.49), 0.0);
+  REQUIRE(g.count == 2);
+  CHECK(std::abs(g.normal.y()) == Approx(1.0));
+  for (int i = 0; i < 2; ++i) CHECK(g.points[i].separation == Approx(-0.01));
+  // Separated by more than the margin: nothing; within it: speculative points.
+  CHECK(collideShapes(box, at(0, 0), cap, at(0, 0.8), 0.0).count == 0);
+  CHECK(collideShapes(box, at(0, 0), cap, at(0, 0.8), 0.1).count == 2);
+  // A capsule's rounded end near a box corner: one point along the line between core and corner.
+  const Manifold c = collideShapes(box, at(0, 0), makeCapsule({0, 0}, {1, 0}, 0.1), at(2.2, 0.7), 0.5);
+  REQUIRE(c.count == 1);
+  CHECK(c.normal.x() == Approx(std::sqrt(0.5)));
+  CHECK(c.points[0].separation == Approx(std::hypot(0.2, 0.2) - 0.1));
+}
+
+TEST_CASE("chain segment–circle: one-sided, and a joint between flush segments gives one contact") {
+  // Ground listed from right to left: the surface faces up.
+  const Shape left = makeChainSegment({2, 0}, {0, 0}, {-2, 0}, {-2, 0});
+  const Shape right = makeChainSegment({2, 0}, {2, 0}, {0, 0}, {-2, 0});
+  const Shape ball = makeCircle(0.5);
+  SUBCASE("above: a contact with normal down from the chain to the ball, i.e. up") {
+    const Manifold m = collideShapes(left, at(0, 0), ball, at(-1, 0.45), 0.0);
+    REQUIRE(m.count == 1);
+    CHECK(m.normal.y() == Approx(1.0));
+    CHECK(m.points[0].separation == Approx(-0.05));
+  }
+  SUBCASE("below (behind): nothing") { CHECK(collideShapes(left, at(0, 0), ball, at(-1, -0.45), 0.0).count == 0); }
+  SUBCASE("just right of the joint: only the right segment answers") {
+    const int from_left = collideShapes(left, at(0, 0), ball, at(0.01, 0.45), 0.0).count;
+    const int from_right = collideShapes(right, at(0, 0), ball, at(0.01, 0.45), 0.0).count;
+    CHECK(from_left + from_right == 1);
+    CHECK(from_right == 1);
+  }
+  SUBCASE("a free end of an open chain collides like a segment end") {
+    const Manifold m = collideShapes(left, at(0, 0), ball, at(-2.3, 0.3), 0.0);
+    REQUIRE(m.count == 1);
+    CHECK(m.normal.x() == Approx(-0.3 / std::hypot(0.3, 0.3)));
+  }
+}
+
+TEST_CASE("chain segment–polygon: a box over the joint of flush segments gets only upward normals") {
+  const Shape left = makeChainSegment({2, 0}, {0, 0}, {-2, 0}, {-2, 0});
+  const Shape right = makeChainSegment({2, 0}, {2, 0}, {0, 0}, {-2, 0});
+  const Shape box = makeBox(1, 1);
+  for (double x : {-0.6, -0.5, -0.2, 0.0, 0.3, 0.5, 0.55}) {
+    CAPTURE(x);
+    int points = 0;
+    for (const Shape* s : {&left, &right}) {
+      const Manifold m = collideShapes(*s, at(0, 0), box, at(x, 0.49), 0.0);
+      for (int i = 0; i < m.count; ++i) {
+        CHECK(m.normal.y() == Approx(1.0));
+        CHECK(m.points[i].separation == Approx(-0.01));
+        ++points;
+      }
+    }
+    CHECK(points >= 2);
+  }
+  // Behind the chain: nothing.
+  CHECK(collideShapes(left, at(0, 0), box, at(-1, -0.49), 0.0).count == 0);
+  // A capsule lying on the chain: two points.
+  const Manifold c = collideShapes(left, at(0, 0), makeCapsule({-0.5, 0}, {0.5, 0}, 0.2), at(-1, 0.19), 0.0);
+  CHECK(c.count == 2);
+}

@@ -184,7 +184,7 @@ TEST_CASE("every rejected input names the field and the value") {
   CHECK(create([](BodyDef& d) { d.restitution = 1.5; }) == "restitution must be between 0 and 1, got 1.5");
   CHECK(create([](BodyDef& d) { d.friction = -0.1; }) == "friction must be >= 0, got -0.1");
   CHECK(create([](BodyDef& d) { d.static_friction = NAN; }) == "static_friction must be >= 0, got nan");
-  CHECK(create([](BodyDef& d) { d.shape.radius = -2.0; }) == "radius must be > 0, got -2");
+  CHECK(create([](BodyDef& d) { d.shape->radius = -2.0; }) == "radius must be > 0, got -2");
   // A finite position whose centre of mass overflows (a circle centred 1e308 m off its origin).
   CHECK(create([](BodyDef& d) {
           d.shape = makeCircle(1.0, {1e308, 0.0});

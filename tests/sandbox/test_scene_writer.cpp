@@ -76,20 +76,25 @@ void checkSameState(const World& x, const World& y, double tol = 1e-12) {
     const Body &a = x.body(xs[i]), &b = y.body(ys[i]);
     CHECK(a.type == b.type);
     CHECK(a.name == b.name);
-    CHECK(a.shape.type == b.shape.type);
-    checkClose(a.shape.radius, b.shape.radius, tol);
-    REQUIRE(a.shape.vertices.size() == b.shape.vertices.size());
-    // The same outline in world coordinates (a circle's origin may move onto its centre).
-    for (size_t k = 0; k < a.shape.vertices.size(); ++k) checkClose(a.xf.apply(a.shape.vertices[k]), b.xf.apply(b.shape.vertices[k]), tol);
+    REQUIRE(a.shapes.size() == b.shapes.size());
+    for (size_t s = 0; s < a.shapes.size(); ++s) {
+      const BodyShape &sa = x.shape(a.shapes[s]), &sb = y.shape(b.shapes[s]);
+      CHECK(sa.geometry.type == sb.geometry.type);
+      checkClose(sa.geometry.radius, sb.geometry.radius, tol);
+      REQUIRE(sa.geometry.vertices.size() == sb.geometry.vertices.size());
+      // The same outline in world coordinates (a circle's origin may move onto its centre).
+      for (size_t k = 0; k < sa.geometry.vertices.size(); ++k)
+        checkClose(a.xf.apply(sa.geometry.vertices[k]), b.xf.apply(sb.geometry.vertices[k]), tol);
+      CHECK(sa.material.restitution == sb.material.restitution);
+      CHECK(sa.material.friction == sb.material.friction);
+      CHECK(sa.material.static_friction == sb.material.static_friction);
+    }
     checkClose(a.center, b.center, tol);
     checkClose(a.angle, b.angle, tol);
     checkClose(a.velocity, b.velocity, tol);
     checkClose(a.angular_velocity, b.angular_velocity, tol);
     checkClose(a.mass, b.mass, tol);
     checkClose(a.inertia, b.inertia, tol);
-    CHECK(a.material.restitution == b.material.restitution);
-    CHECK(a.material.friction == b.material.friction);
-    CHECK(a.material.static_friction == b.material.static_friction);
   }
 }
 

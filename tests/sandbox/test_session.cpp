@@ -232,8 +232,9 @@ TEST_CASE("session: tools add, drag, move, delete and toggle bodies, all undoabl
   click(s, Vec2(3, 2));
   REQUIRE(s.world().bodyCount() == 3);
   const Body& c = s.world().body(s.selected);
-  CHECK(c.shape.type == ShapeType::Circle);
-  CHECK(c.shape.radius == s.tools.circle_radius);
+  REQUIRE(c.shapes.size() == 1);
+  CHECK(s.world().shape(c.shapes[0]).geometry.type == ShapeType::Circle);
+  CHECK(s.world().shape(c.shapes[0]).geometry.radius == s.tools.circle_radius);
   CHECK(c.xf.p.x() == doctest::Approx(3).epsilon(0.02));
   CHECK(c.xf.p.y() == doctest::Approx(2).epsilon(0.02));
   handleEvent(s, key(SDLK_z, KMOD_LCTRL), {});
@@ -249,7 +250,7 @@ TEST_CASE("session: tools add, drag, move, delete and toggle bodies, all undoabl
   handleEvent(s, mouse(SDL_MOUSEMOTION, b), {});
   handleEvent(s, mouse(SDL_MOUSEBUTTONUP, b), {});
   REQUIRE(s.world().bodyCount() == 4);
-  const Aabb box = computeAabb(s.world().body(s.selected).shape, s.world().body(s.selected).xf);
+  const Aabb box = computeAabb(s.world().shape(s.world().body(s.selected).shapes[0]).geometry, s.world().body(s.selected).xf);
   CHECK(box.upper.x() - box.lower.x() == doctest::Approx(2).epsilon(0.02));
   CHECK(box.upper.y() - box.lower.y() == doctest::Approx(1).epsilon(0.02));
 
@@ -260,7 +261,7 @@ TEST_CASE("session: tools add, drag, move, delete and toggle bodies, all undoabl
   click(s, Vec2(6, 1));
   handleEvent(s, key(SDLK_RETURN), {});
   REQUIRE(s.world().bodyCount() == 5);
-  CHECK(s.world().body(s.selected).shape.vertices.size() == 3);
+  CHECK(s.world().shape(s.world().body(s.selected).shapes[0]).geometry.vertices.size() == 3);
   // A concave outline is refused with a message; the points stay to be fixed.
   click(s, Vec2(-8, 0));
   click(s, Vec2(-6, 0));
@@ -457,7 +458,7 @@ end
   CHECK(s.watcher.files().size() == 2);
   write(dir.path / "shapes_helper.lua", "return {radius = 1.5}\n");
   REQUIRE(pump(s, [&] { return s.reloads == 1; }));
-  CHECK(s.world().body(*s.world().findBody("ball")).shape.radius == 1.5);
+  CHECK(s.world().shape(s.world().body(*s.world().findBody("ball")).shapes[0]).geometry.radius == 1.5);
 }
 
 TEST_CASE("session: the live error against Exact(t); a failing Exact is shown and switched off") {

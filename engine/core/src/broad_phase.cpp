@@ -98,7 +98,7 @@ void findPairsCached(WorldImpl& w) {
 void usePairCache(bool on) { pairCacheOn() = on; }
 
 void findPairs(WorldImpl& w) {
-  const size_t n = w.bodies.size();
+  const size_t n = w.shapes.size();
   if (n < 2) {
     w.pairs.clear();
     w.pair_cache.valid = false;
@@ -106,38 +106,58 @@ void findPairs(WorldImpl& w) {
   }
   w.proxies.resize(n);
   w.polygon_offset.resize(n);
+  w.shape_views.resize(n);
   w.world_vertices.clear();
   w.world_normals.clear();
   for (size_t i = 0; i < n; ++i) {
-    if (i + 4 < n) {  // each body's vertices are a separate allocation: ask for them ahead
-      const Shape& ahead = w.bodies[i + 4].shape;
+    if (i + 4 < n) {  // each shape's vertices are a separate allocation: ask for them ahead
+      const Shape& ahead = w.shapes[i + 4].geometry;
       __builtin_prefetch(ahead.vertices.data());
       __builtin_prefetch(ahead.normals.data());
     }
     Proxy& p = w.proxies[i];
-    p.active = w.alive[i];
+    const BodyShape& s = w.shapes[i];
+    const Body& b = w.bodies[s.body.index];
+    p.active = w.shape_alive[i] && b.enabled;
     if (!p.active) continue;
-    const Body& b = w.bodies[i];
-    p.is_static = b.isStatic();
-    if (b.shape.type == ShapeType::Polygon) {
-      // Each polygon is placed in the world once per step; the narrow phase reads it for every
-      // pair (manifold.h WorldPolygon), and its box comes from the placed vertices.
+    p.is_static = !b.isDynamic();  // static and kinematic bodies do not collide with each other
+    const Shape& shape = s.geometry;
+    if (shape.type != ShapeType::Circle) {
+      // Each polygon (and capsule, segment) is placed in the world once per step; the narrow phase
+      // reads it for every pair (manifold.h WorldPolygon), and its box comes from the placed corners.
       w.polygon_offset[i] = static_cast<uint32_t>(w.world_vertices.size());
       p.aabb = {Vec2::Constant(std::numeric_limits<double>::infinity()), Vec2::Constant(-std::numeric_limits<double>::infinity())};
-      for (size_t k = 0; k < b.shape.vertices.size(); ++k) {
-        const Vec2 v = b.xf.apply(b.shape.vertices[k]);
+      for (size_t k = 0; k < shape.vertices.size(); ++k) {
+        const Vec2 v = b.xf.apply(shape.vertices[k]);
         w.world_vertices.push_back(v);
-        w.world_normals.push_back(b.xf.q.apply(b.shape.normals[k]));
+        w.world_normals.push_back(b.xf.q.apply(shape.normals[k]));
         p.aabb.lower = p.aabb.lower.cwiseMin(v);
         p.aabb.upper = p.aabb.upper.cwiseMax(v);
       }
+      if (shape.radius > 0.0) {  // capsules
+        p.aabb.lower -= Vec2::Constant(shape.radius);
+        p.aabb.upper += Vec2::Constant(shape.radius);
+      }
     } else {
-      p.aabb = computeAabb(b.shape, b.xf);
+      p.aabb = computeAabb(shape, b.xf);
     }
+    WorldImpl::ShapeView& view = w.shape_views[i];
+    view.placed.shape = &shape;
+    view.placed.xf = &b.xf;
+    view.body = s.body.index;
+    view.special = s.sensor || !s.default_filter;
     // Inflated by half the contact margin each, so pairs within the margin are found.
     const Vec2 half_margin = Vec2::Constant(0.5 * w.def.contact_margin);
     p.aabb.lower -= half_margin;
     p.aabb.upper += half_margin;
+  }
+  // The world polygons are complete (the vector no longer grows): point the views at them.
+  for (size_t i = 0; i < n; ++i) {
+    const Shape& shape = w.shapes[i].geometry;
+    if (!w.proxies[i].active || shape.type == ShapeType::Circle) continue;
+    const uint32_t at = w.polygon_offset[i];
+    w.shape_views[i].placed.poly = {&w.world_vertices[at], &w.world_normals[at], static_cast<int>(shape.vertices.size()),
+                                    shape.extent};
   }
   findPairsCached(w);
 }

@@ -12,13 +12,16 @@ namespace rigidlab {
 // whole array, and a pile of 12 500 contacts is several megabytes, so each byte is paid for in cache
 // misses several times per step (callgrind/perf, pyramid of base 100). What only sequential
 // impulses need during their solve (effective masses, the 2×2 K) lives in their SolverContact.
+// Unaligned 2-vectors: an aligned Vec2 pads ContactPoint to 128 bytes and Contact to 336.
+using Vec2u = Eigen::Matrix<double, 2, 1, Eigen::DontAlign>;
+
 struct ContactPoint {
-  Vec2 point = Vec2::Zero();      // world [m]
+  Vec2u point = Vec2::Zero();     // world [m]
   double separation = 0.0;        // [m] < 0 overlap
   uint32_t id = 0;                // feature id (manifold.h)
   bool persisted = false;         // the same features touched in the previous step
-  Vec2 ra = Vec2::Zero();         // from A's centre of mass to the point [m]
-  Vec2 rb = Vec2::Zero();         // from B's centre of mass to the point [m]
+  Vec2u ra = Vec2::Zero();        // from A's centre of mass to the point [m]
+  Vec2u rb = Vec2::Zero();        // from B's centre of mass to the point [m]
   double target_velocity = 0.0;   // normal relative velocity the solver aims for (restitution) [m/s]
   double overlap_time = 0.0;      // how long the point has overlapped this step [s] (position_correction.cpp)
   double friction = 0.0;          // f_s or f_d, chosen from the slip at the start of the step
@@ -31,9 +34,10 @@ struct ContactPoint {
 
 struct Contact {
   uint32_t a = 0, b = 0;  // body slots
+  uint32_t shape_a = 0, shape_b = 0;  // shape slots: the contact's key (shape_a < shape_b)
   int count = 0;
   bool block = false;     // sequential impulses solve the two points together (contact_solver.cpp)
-  Vec2 normal = Vec2::Zero();
+  Vec2u normal = Vec2::Zero();
   ContactPoint points[2];
   double restitution = 0.0;
   double friction = 0.0;         // combined dynamic friction
@@ -46,7 +50,7 @@ static_assert(sizeof(ContactPoint) <= 128 && sizeof(Contact) <= 320, "packed: se
 constexpr double kDeepOverlapMargin = 0.005;
 
 // Per contact, in the same order as WorldImpl::contacts: what the walks that need only the bodies
-// read (choosing the solvers, islands, sleep), so that they do not load each 320-byte Contact again
+// read (choosing the solvers, islands, sleep), so that they do not load each 312-byte Contact again
 // (a pile of 16 000 contacts is 6 MB, far beyond the cache). Written by the narrow phase.
 struct ContactKey {
   uint32_t a, b;      // body slots

@@ -92,7 +92,7 @@ void prepare(WorldImpl& w, Contact& c, SolverPrepared& out) {
       // A body that would travel more than its inner radius into the other bounces now (from the
       // gap), so it cannot pass through; so does one that continuous detection put at the wall.
       const bool fast = w.ccd_hit[c.a] || w.ccd_hit[c.b] ||
-                        -vn * w.dt > std::min(a.shape.inradius, b.shape.inradius);
+                        -vn * w.dt > std::min(w.shapes[c.shape_a].geometry.inradius, w.shapes[c.shape_b].geometry.inradius);
       if (fast && vn < -w.def.restitution_threshold) cp.target_velocity = -c.restitution * vn;
       if (!fast && vn < -w.def.restitution_threshold && c.restitution > 0.0 && vn * w.dt < -cp.separation) {
         // A bouncing impact: let it happen next step, where restitution is taken at the moment of

@@ -16,6 +16,7 @@
 // Dynamic–dynamic pairs are not swept.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "manifold.h"
 #include "stages.h"
@@ -36,38 +37,52 @@ void sweepFastBodies(WorldImpl& w) {
   const uint32_t n = static_cast<uint32_t>(w.bodies.size());
   const double target = 0.25 * w.def.contact_margin;  // stop this far from contact
   w.statics.clear();
-  for (uint32_t i = 0; i < n; ++i)
-    if (w.alive[i] && w.bodies[i].isStatic()) w.statics.push_back(i);
+  for (uint32_t s = 0; s < w.shapes.size(); ++s) {
+    if (!w.shape_alive[s] || w.shapes[s].sensor) continue;
+    const Body& b = w.bodyOf(s);
+    if (b.isStatic() && b.enabled) w.statics.push_back(s);
+  }
   if (w.statics.empty()) return;
 
   for (uint32_t i = 0; i < n; ++i) {
     if (!w.isActive(i)) continue;
     Body& b = w.bodies[i];
+    // A body's thinnest and widest shapes bound what it can skip and how far its points travel.
+    const double inradius = b.min_inradius, extent = b.max_extent;
+    if (extent == 0.0) continue;  // no solid shape
     const Vec2 c0 = w.start_center[i], c1 = b.center;
     const double a0 = w.start_angle[i], a1 = b.angle;
-    const double travel = (c1 - c0).norm() + std::abs(a1 - a0) * maxExtent(b.shape);
-    if (travel <= b.shape.inradius) continue;  // cannot skip over anything: discrete detection sees it
+    const double travel = (c1 - c0).norm() + std::abs(a1 - a0) * extent;
+    if (travel <= inradius) continue;  // cannot skip over anything: discrete detection sees it
     ++w.stats.ccd_sweeps;
 
-    // Swept box: the shape's boxes at both ends, grown by the rotation bound.
-    Aabb swept = computeAabb(b.shape, placed(b, c0, a0));
-    const Aabb end = computeAabb(b.shape, b.xf);
-    swept.lower = swept.lower.cwiseMin(end.lower);
-    swept.upper = swept.upper.cwiseMax(end.upper);
+    const Transform start = placed(b, c0, a0);
     double first = 1.0;
-    for (uint32_t s : w.statics) {
-      const Body& wall = w.bodies[s];
-      if (!swept.overlaps(computeAabb(wall.shape, wall.xf))) continue;
-      const double d0 = separationLowerBound(b.shape, placed(b, c0, a0), wall.shape, wall.xf);
-      if (d0 <= target) continue;  // already in contact at the start: the contact solver has it
-      double t = 0.0;
-      for (int iteration = 0; iteration < 50 && t < first; ++iteration) {
-        const double d = separationLowerBound(b.shape, placed(b, c0 + t * (c1 - c0), a0 + t * (a1 - a0)), wall.shape, wall.xf);
-        if (d <= target) {
-          first = t;
-          break;
+    for (ShapeId id : b.shapes) {
+      const BodyShape& mover = w.shapes[id.index];
+      if (mover.sensor) continue;
+      // Swept box: the shape's boxes at both ends, grown by the rotation bound.
+      Aabb swept = computeAabb(mover.geometry, start);
+      const Aabb end = computeAabb(mover.geometry, b.xf);
+      swept.lower = swept.lower.cwiseMin(end.lower);
+      swept.upper = swept.upper.cwiseMax(end.upper);
+      for (uint32_t s : w.statics) {
+        const BodyShape& wall = w.shapes[s];
+        if (!shouldCollide(mover.filter, wall.filter)) continue;
+        const Body& wall_body = w.bodies[wall.body.index];
+        if (!swept.overlaps(computeAabb(wall.geometry, wall_body.xf))) continue;
+        const double d0 = separationLowerBound(mover.geometry, start, wall.geometry, wall_body.xf);
+        if (d0 <= target) continue;  // already in contact at the start: the contact solver has it
+        double t = 0.0;
+        for (int iteration = 0; iteration < 50 && t < first; ++iteration) {
+          const double d = separationLowerBound(mover.geometry, placed(b, c0 + t * (c1 - c0), a0 + t * (a1 - a0)),
+                                                wall.geometry, wall_body.xf);
+          if (d <= target) {
+            first = t;
+            break;
+          }
+          t += (d - 0.5 * target) / travel;
         }
-        t += (d - 0.5 * target) / travel;
       }
     }
     if (first < 1.0) {

@@ -29,6 +29,24 @@ void DebugDraw::drawSpring(const Vec2& a, const Vec2& b, double width, const Col
   drawSegment(end, b, color);
 }
 
+void DebugDraw::drawCapsule(const Vec2& a, const Vec2& b, double radius, const Color& fill, const Color& outline) {
+  const Vec2 d = b - a;
+  const double length = d.norm();
+  const Vec2 u = length > 0.0 ? Vec2(d / length) : Vec2(1.0, 0.0);
+  const double base = std::atan2(u.y(), u.x());
+  constexpr int kHalf = 12;  // corners per half circle
+  std::vector<Vec2> outline_points;
+  for (int i = 0; i <= kHalf; ++i) {  // around b from −90° to +90°, then around a
+    const double t = base - M_PI / 2 + M_PI * i / kHalf;
+    outline_points.push_back(b + radius * Vec2(std::cos(t), std::sin(t)));
+  }
+  for (int i = 0; i <= kHalf; ++i) {
+    const double t = base + M_PI / 2 + M_PI * i / kHalf;
+    outline_points.push_back(a + radius * Vec2(std::cos(t), std::sin(t)));
+  }
+  drawPolygon(outline_points, fill, outline);
+}
+
 void DebugDraw::drawArrow(const Vec2& from, const Vec2& to, const Color& color) {
   drawSegment(from, to, color);
   const Vec2 d = to - from;
@@ -59,32 +77,63 @@ void World::draw(DebugDraw& dd, const DrawOptions& opt) const {
     return i < opt.transforms.size() ? opt.transforms[i] : w.bodies[i].xf;
   };
 
+  const Color kinematic_fill{0.55f, 0.42f, 0.2f, 0.85f}, kinematic_line{1.0f, 0.8f, 0.45f, 1.0f};  // amber
+  const Color disabled_line{0.45f, 0.45f, 0.45f, 0.6f};
   std::vector<Vec2> poly;
   for (size_t i = 0; i < w.bodies.size(); ++i) {
     if (!w.alive[i]) continue;
     const Body& b = w.bodies[i];
     const Transform xf = transformOf(i);
     const bool selected = b.id == opt.selected;
-    const Color& fill = b.frozen ? frozen_fill : b.isStatic() ? static_fill : b.awake ? dynamic_fill : sleeping_fill;
-    const Color& line = selected ? selected_line : b.isStatic() ? static_line : dynamic_line;
-    if (opt.shapes) {
-      if (b.shape.type == ShapeType::Circle) {
-        const double angle = std::atan2(xf.q.s, xf.q.c);
-        dd.drawCircle(xf.apply(b.shape.center), b.shape.radius, angle, fill, line);
-      } else {
-        poly.clear();
-        for (const Vec2& v : b.shape.vertices) poly.push_back(xf.apply(v));
-        dd.drawPolygon(poly, fill, line);
+    const Color& body_fill = b.frozen ? frozen_fill
+                             : b.isStatic() ? static_fill
+                             : b.isKinematic() ? kinematic_fill
+                             : b.awake ? dynamic_fill
+                                       : sleeping_fill;
+    const Color& body_line = selected        ? selected_line
+                             : !b.enabled    ? disabled_line
+                             : b.isStatic()  ? static_line
+                             : b.isKinematic() ? kinematic_line
+                                             : dynamic_line;
+    for (ShapeId id : b.shapes) {
+      const BodyShape& s = w.shapes[id.index];
+      const Shape& shape = s.geometry;
+      // Sensors and disabled bodies: outline only.
+      const Color fill = s.sensor || !b.enabled ? Color{body_fill.r, body_fill.g, body_fill.b, 0.15f} : body_fill;
+      if (opt.shapes) {
+        switch (shape.type) {
+          case ShapeType::Circle:
+            dd.drawCircle(xf.apply(shape.center), shape.radius, std::atan2(xf.q.s, xf.q.c), fill, body_line);
+            break;
+          case ShapeType::Polygon:
+            poly.clear();
+            for (const Vec2& v : shape.vertices) poly.push_back(xf.apply(v));
+            dd.drawPolygon(poly, fill, body_line);
+            break;
+          case ShapeType::Capsule:
+            dd.drawCapsule(xf.apply(shape.vertices[0]), xf.apply(shape.vertices[1]), shape.radius, fill, body_line);
+            break;
+          case ShapeType::Segment:
+          case ShapeType::ChainSegment: {
+            const Vec2 p = xf.apply(shape.vertices[0]), q = xf.apply(shape.vertices[1]);
+            dd.drawSegment(p, q, body_line);
+            if (shape.type == ShapeType::ChainSegment) {  // a tick on the solid side's back: one-sided
+              const Vec2 mid = 0.5 * (p + q), n = xf.q.apply(shape.normals[0]);
+              dd.drawSegment(mid, mid - 0.05 * (q - p).norm() * n, body_line);
+            }
+            break;
+          }
+        }
       }
-    }
-    if (opt.aabbs) {
-      const Aabb box = computeAabb(b.shape, xf);
-      const Color c{0.8f, 0.3f, 0.8f, 1.0f};
-      const Vec2 lr(box.upper.x(), box.lower.y()), ul(box.lower.x(), box.upper.y());
-      dd.drawSegment(box.lower, lr, c);
-      dd.drawSegment(lr, box.upper, c);
-      dd.drawSegment(box.upper, ul, c);
-      dd.drawSegment(ul, box.lower, c);
+      if (opt.aabbs) {
+        const Aabb box = computeAabb(shape, xf);
+        const Color c{0.8f, 0.3f, 0.8f, 1.0f};
+        const Vec2 lr(box.upper.x(), box.lower.y()), ul(box.lower.x(), box.upper.y());
+        dd.drawSegment(box.lower, lr, c);
+        dd.drawSegment(lr, box.upper, c);
+        dd.drawSegment(box.upper, ul, c);
+        dd.drawSegment(ul, box.lower, c);
+      }
     }
     const Vec2 center = xf.apply(b.local_center);
     if (opt.centers) dd.drawPoint(center, 5.0f, {1.0f, 1.0f, 1.0f, 1.0f});

@@ -28,7 +28,7 @@ bool implicitVelocityChange(WorldImpl& w, double t0, double h, bool stiffness) {
   s.row.assign(n, -1);
   int rows = 0;
   for (uint32_t i = 0; i < n; ++i)
-    if (w.alive[i] && !w.bodies[i].isStatic()) s.row[i] = rows++;
+    if (w.alive[i] && w.bodies[i].isDynamic()) s.row[i] = rows++;
 
   // Blocks of the linearised forces, keyed by (row body, column body).
   s.blocks.clear();

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <limits>
 
+#include "distance.h"
+
 namespace rigidlab {
 namespace {
 
@@ -209,8 +211,37 @@ Manifold collidePolygons(const WorldPolygon& a, const WorldPolygon& b, double ma
   return m;
 }
 
+namespace {
+
+// The core of a shape as GJK sees it (distance.h): points in world coordinates and a radius.
+struct Core {
+  Vec2 points[kMaxPolygonVertices];
+  int count = 0;
+  double radius = 0.0;
+};
+
+Core coreOf(const Shape& s, const Transform& xf) {
+  Core c;
+  if (s.type == ShapeType::Circle) {
+    c.points[0] = xf.apply(s.center);
+    c.count = 1;
+  } else {
+    for (const Vec2& v : s.vertices) c.points[c.count++] = xf.apply(v);
+  }
+  c.radius = s.radius;
+  return c;
+}
+
+}  // namespace
+
 double separationLowerBound(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb) {
   constexpr double kAll = std::numeric_limits<double>::infinity();
+  const auto plain = [](const Shape& s) { return s.type == ShapeType::Circle || s.type == ShapeType::Polygon; };
+  if (!plain(a) || !plain(b)) {
+    // Capsules and segments: the exact distance of the cores less the radii.
+    const Core ca = coreOf(a, xa), cb = coreOf(b, xb);
+    return shapeDistance({ca.points, ca.count, 0.0}, {cb.points, cb.count, 0.0}).distance - ca.radius - cb.radius;
+  }
   if (a.type == ShapeType::Polygon && b.type == ShapeType::Polygon) {
     Vec2 va[kMaxPolygonVertices], na[kMaxPolygonVertices], vb[kMaxPolygonVertices], nb[kMaxPolygonVertices];
     for (size_t i = 0; i < a.vertices.size(); ++i) {
@@ -231,15 +262,70 @@ double separationLowerBound(const Shape& a, const Transform& xa, const Shape& b,
 }
 
 Manifold collideShapes(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double margin) {
-  const bool pa = a.type == ShapeType::Polygon, pb = b.type == ShapeType::Polygon;
-  if (pa && pb) return collidePolygons(a, xa, b, xb, margin);
-  if (pa) return collidePolygonAndCircle(a, xa, b, xb, margin);
-  if (pb) {
-    Manifold m = collidePolygonAndCircle(b, xb, a, xa, margin);
-    m.normal = -m.normal;
-    return m;
-  }
-  return collideCircles(a, xa, b, xb, margin);
+  Vec2 va[kMaxPolygonVertices], na[kMaxPolygonVertices], vb[kMaxPolygonVertices], nb[kMaxPolygonVertices];
+  const auto place = [](const Shape& s, const Transform& xf, Vec2* v, Vec2* n) {
+    for (size_t i = 0; i < s.vertices.size(); ++i) {
+      v[i] = xf.apply(s.vertices[i]);
+      n[i] = xf.q.apply(s.normals[i]);
+    }
+    return PlacedShape{&s, &xf, WorldPolygon{v, n, static_cast<int>(s.vertices.size()), maxExtent(s)}};
+  };
+  return collide(place(a, xa, va, na), place(b, xb, vb, nb), margin);
 }
+
+// --- Dispatch on the two kinds.
+
+namespace {
+
+Manifold none(const PlacedShape&, const PlacedShape&, double) { return {}; }
+Manifold circleCircle(const PlacedShape& a, const PlacedShape& b, double margin) {
+  return collideCircles(*a.shape, *a.xf, *b.shape, *b.xf, margin);
+}
+Manifold polygonCircle(const PlacedShape& a, const PlacedShape& b, double margin) {
+  return collidePolygonAndCircle(*a.shape, *a.xf, *b.shape, *b.xf, margin);
+}
+Manifold polygonPolygon(const PlacedShape& a, const PlacedShape& b, double margin) {
+  return collidePolygons(a.poly, b.poly, margin);
+}
+// a: capsule or segment (a rounded segment of radius a.shape->radius).
+Manifold roundCircle(const PlacedShape& a, const PlacedShape& b, double margin) {
+  return collideSegmentAndCircle(a.poly.vertices[0], a.poly.vertices[1], a.shape->radius, b.xf->apply(b.shape->center),
+                                 b.shape->radius, margin);
+}
+Manifold roundPolygon(const PlacedShape& a, const PlacedShape& b, double margin) {
+  return collideRoundPolygons(a.poly, a.shape->radius, b.poly, 0.0, margin);
+}
+Manifold roundRound(const PlacedShape& a, const PlacedShape& b, double margin) {
+  return collideRoundSegments(a.poly.vertices[0], a.poly.vertices[1], a.shape->radius, b.poly.vertices[0],
+                              b.poly.vertices[1], b.shape->radius, margin);
+}
+// a: chain segment; b: circle, or polygon or capsule (a polygon rounded by its radius).
+Manifold chainCircle(const PlacedShape& a, const PlacedShape& b, double margin) {
+  return collideChainAndCircle(a.xf->apply(a.shape->ghost1), a.poly.vertices[0], a.poly.vertices[1],
+                               a.xf->apply(a.shape->ghost2), b.xf->apply(b.shape->center), b.shape->radius, margin);
+}
+Manifold chainPolygon(const PlacedShape& a, const PlacedShape& b, double margin) {
+  return collideChainAndPolygon(a.xf->apply(a.shape->ghost1), a.poly.vertices[0], a.poly.vertices[1],
+                                a.xf->apply(a.shape->ghost2), b.poly, b.shape->radius, margin);
+}
+// The pair the other way round: B against A, with the normal turned to point from A to B.
+template <CollideFn F>
+Manifold swapped(const PlacedShape& a, const PlacedShape& b, double margin) {
+  Manifold m = F(b, a, margin);
+  m.normal = -m.normal;
+  return m;
+}
+
+}  // namespace
+
+// Segments and chains belong to static or kinematic bodies, which do not collide with each other.
+const CollideFn kCollideTable[kShapeTypes][kShapeTypes] = {
+    //          circle                 polygon                capsule                segment              chain segment
+    /* circle */ {circleCircle, swapped<polygonCircle>, swapped<roundCircle>, swapped<roundCircle>, swapped<chainCircle>},
+    /* polygon*/ {polygonCircle, polygonPolygon, swapped<roundPolygon>, swapped<roundPolygon>, swapped<chainPolygon>},
+    /* capsule*/ {roundCircle, roundPolygon, roundRound, roundRound, swapped<chainPolygon>},
+    /* segment*/ {roundCircle, roundPolygon, roundRound, none, none},
+    /* chain  */ {chainCircle, chainPolygon, chainPolygon, none, none},
+};
 
 }  // namespace rigidlab

@@ -38,6 +38,24 @@ struct WorldPolygon {
   double extent;  // Shape::extent
 };
 
+// A shape placed in the world for the narrow phase: its geometry (body coordinates), the body's
+// transform, and for the kinds with corners (polygon, capsule, segment, chain segment) those
+// corners and normals in world coordinates (placed once per step by the broad phase).
+struct PlacedShape {
+  const Shape* shape;
+  const Transform* xf;
+  WorldPolygon poly;  // not set for circles
+};
+
+// The manifold of any two shapes: dispatches on the two kinds (a table with one function per pair
+// of kinds, Box2D v3's b2Contact registers). Pairs that cannot meet (two segments of static or
+// kinematic bodies) give no points.
+using CollideFn = Manifold (*)(const PlacedShape&, const PlacedShape&, double);
+extern const CollideFn kCollideTable[kShapeTypes][kShapeTypes];  // [kind of a][kind of b]
+inline Manifold collide(const PlacedShape& a, const PlacedShape& b, double margin) {
+  return kCollideTable[static_cast<int>(a.shape->type)][static_cast<int>(b.shape->type)](a, b, margin);
+}
+
 // Points are reported when their separation is ≤ margin (margin 0: touching or overlapping).
 Manifold collideCircles(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double margin);
 Manifold collidePolygonAndCircle(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double margin);
@@ -47,7 +65,24 @@ Manifold collidePolygons(const WorldPolygon& a, const WorldPolygon& b, double ma
 // with a circle; for two polygons the largest separation along their face normals (the separating
 // axis test), which never exceeds the true distance. Used by continuous collision detection.
 double separationLowerBound(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb);
-// Dispatches on the shape types; a circle–polygon pair is solved as polygon–circle and flipped.
+// Dispatches on the shape types (the shapes placed by the transforms); a circle–polygon pair is
+// solved as polygon–circle and flipped.
 Manifold collideShapes(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double margin);
+
+// The kinds with a rounded segment (capsule; segment and chain segment with radius 0), in world
+// coordinates: manifold_round.cpp.
+// Capsule or segment a (radius ra) against a circle of centre c and radius rb.
+Manifold collideSegmentAndCircle(const Vec2& p, const Vec2& q, double ra, const Vec2& c, double rb, double margin);
+// Two rounded segments.
+Manifold collideRoundSegments(const Vec2& p1, const Vec2& q1, double ra, const Vec2& p2, const Vec2& q2, double rb,
+                              double margin);
+// Two convex polygons rounded by ra and rb (a capsule or segment is a two-cornered polygon).
+Manifold collideRoundPolygons(const WorldPolygon& a, double ra, const WorldPolygon& b, double rb, double margin);
+// A chain segment (one-sided, with ghost vertices; manifold_chain.cpp) against a circle, or against
+// a polygon rounded by `radius` (capsules too). Points are in world coordinates.
+Manifold collideChainAndCircle(const Vec2& ghost1, const Vec2& p1, const Vec2& p2, const Vec2& ghost2, const Vec2& c,
+                               double r, double margin);
+Manifold collideChainAndPolygon(const Vec2& ghost1, const Vec2& p1, const Vec2& p2, const Vec2& ghost2,
+                                const WorldPolygon& b, double radius, double margin);
 
 }  // namespace rigidlab

@@ -1,11 +1,11 @@
-// Stage 3 of the step: contact manifolds for the candidate pairs (origin.md §7), each turned into a
-// contact constraint with the pair's combined material (body.h Material).
+// Stage 3 of the step: contact manifolds for the candidate pairs of shapes (origin.md §7), each
+// turned into a contact constraint with the two shapes' combined material (shape.h Material).
 //
 // Persistent contacts: a point whose pair and feature id were in contact in the previous step
 // starts with that step's accumulated impulses (warm starting, Catto GDC 2006). The solver then
 // refines last step's answer instead of starting from zero, so resting contacts converge over steps
 // rather than within one step's iterations. Both the new pairs and the previous contacts are sorted
-// by (a, b), so matching is a single merge walk.
+// by shape pair, so matching is a single merge walk.
 #include <algorithm>
 #include <cmath>
 
@@ -38,16 +38,25 @@ void narrowPhase(WorldImpl& w) {
   size_t old = 0;
   const auto& prev = w.previous_contacts;
   for (const BodyPair& pair : w.pairs) {
-    const Body& a = w.bodies[pair.a];
-    const Body& b = w.bodies[pair.b];
-    while (old < prev.size() && (prev[old].a < pair.a || (prev[old].a == pair.a && prev[old].b < pair.b))) ++old;
-    const bool had = old < prev.size() && prev[old].a == pair.a && prev[old].b == pair.b;
+    const WorldImpl::ShapeView& va = w.shape_views[pair.a];
+    const WorldImpl::ShapeView& vb = w.shape_views[pair.b];
+    const uint32_t ia = va.body, ib = vb.body;
+    while (old < prev.size() && (prev[old].shape_a < pair.a || (prev[old].shape_a == pair.a && prev[old].shape_b < pair.b))) ++old;
+    const bool had = old < prev.size() && prev[old].shape_a == pair.a && prev[old].shape_b == pair.b;
     if (old + 2 < prev.size()) {  // the previous contacts are walked in order, and out of the cache too
       const char* ahead = reinterpret_cast<const char*>(&prev[old + 2]);
       for (size_t offset = 0; offset < sizeof(Contact); offset += 64) __builtin_prefetch(ahead + offset);
       __builtin_prefetch(ahead + sizeof(Contact) - 1);
     }
-    if (!w.isActive(pair.a) && !w.isActive(pair.b)) {
+    // Two shapes of one body never collide; filters and sensors decide the rest.
+    if (ia == ib) continue;
+    if (va.special || vb.special) {
+      const BodyShape &sa = w.shapes[pair.a], &sb = w.shapes[pair.b];
+      if (sa.sensor || sb.sensor || !shouldCollide(sa.filter, sb.filter)) continue;
+    }
+    const Body& a = w.bodies[ia];
+    const Body& b = w.bodies[ib];
+    if (!w.isActive(ia) && !w.isActive(ib)) {
       // Both asleep (or one static): nothing moved, so the contact is as it was; keep it with its
       // impulses for when the island wakes.
       if (had) {
@@ -56,17 +65,11 @@ void narrowPhase(WorldImpl& w) {
       }
       continue;
     }
-    const auto placed = [&](uint32_t slot, const Body& body) {
-      return WorldPolygon{&w.world_vertices[w.polygon_offset[slot]], &w.world_normals[w.polygon_offset[slot]],
-                          static_cast<int>(body.shape.vertices.size()), body.shape.extent};
-    };
-    const Manifold m = a.shape.type == ShapeType::Polygon && b.shape.type == ShapeType::Polygon
-                           ? collidePolygons(placed(pair.a, a), placed(pair.b, b), w.def.contact_margin)
-                           : collideShapes(a.shape, a.xf, b.shape, b.xf, w.def.contact_margin);
+    const Manifold m = collide(va.placed, vb.placed, w.def.contact_margin);
     if (m.count == 0) continue;
     // An awake body reaching a sleeping one wakes its island.
-    if (!a.isStatic() && !a.awake) w.wakeIsland(pair.a);
-    if (!b.isStatic() && !b.awake) w.wakeIsland(pair.b);
+    if (a.isDynamic() && !a.awake) w.wakeIsland(ia);
+    if (b.isDynamic() && !b.awake) w.wakeIsland(ib);
     // The storage two contacts on, for writing: last written two steps ago, it is out of the cache
     // for a large pile, and clearing a new Contact waited on it (perf, pyramid of base 100).
     if (w.contacts.size() + 2 < w.contacts.capacity()) {
@@ -78,8 +81,10 @@ void narrowPhase(WorldImpl& w) {
     // value-initialised, which GCC does with three `rep stos` (Contact, then each point), slow to
     // start: with them this stage took 1.65 ms on the pyramid of base 100, 1.28 ms without.
     Contact& c = w.contacts.emplace_back(kBlank);
-    c.a = pair.a;
-    c.b = pair.b;
+    c.a = ia;
+    c.b = ib;
+    c.shape_a = pair.a;
+    c.shape_b = pair.b;
     c.normal = m.normal;
     c.count = m.count;
     for (int i = 0; i < m.count; ++i) {
@@ -89,11 +94,12 @@ void narrowPhase(WorldImpl& w) {
       cp.id = m.points[i].id;
     }
     // Penetration the position pass leaves alone: WorldDef::allowed_penetration, but at most a tenth
-    // of the smaller body's size, so centimetre bodies are not allowed to sink half their height.
-    c.slop = std::min(w.def.allowed_penetration, 0.1 * std::min(maxExtent(a.shape), maxExtent(b.shape)));
-    c.restitution = std::max(a.material.restitution, b.material.restitution);
-    c.friction = std::sqrt(a.material.friction * b.material.friction);
-    c.static_friction = std::sqrt(a.material.static_friction * b.material.static_friction);
+    // of the smaller shape's size, so centimetre bodies are not allowed to sink half their height.
+    const BodyShape &sa = w.shapes[pair.a], &sb = w.shapes[pair.b];
+    c.slop = std::min(w.def.allowed_penetration, 0.1 * std::min(maxExtent(sa.geometry), maxExtent(sb.geometry)));
+    c.restitution = std::max(sa.material.restitution, sb.material.restitution);
+    c.friction = std::sqrt(sa.material.friction * sb.material.friction);
+    c.static_friction = std::sqrt(sa.material.static_friction * sb.material.static_friction);
     addKey(w.contact_keys, c);
     if (had) {
       for (int i = 0; i < c.count; ++i)

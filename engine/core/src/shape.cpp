@@ -17,7 +17,27 @@ double computeExtent(const Shape& shape) {
   if (shape.type == ShapeType::Circle) return shape.center.norm() + shape.radius;
   double r = 0.0;
   for (const Vec2& v : shape.vertices) r = std::max(r, v.norm());
-  return r;
+  return r + shape.radius;  // capsules: the rounding; 0 for the others
+}
+
+// A two-cornered shape (capsule, segment, chain segment): end points and the two side normals.
+Shape makeTwoPoint(ShapeType type, const Vec2& a, const Vec2& b, double radius) {
+  requireFinite("a", a);
+  requireFinite("b", b);
+  const Vec2 d = b - a;
+  // The normal of a → b must be computable: a and b further apart than round-off of their size.
+  const double size = std::max({a.norm(), b.norm(), 1e-300});
+  if (!(d.norm() > 1e-9 * size) || !isFinite(d))
+    throw InputError("b", "b must differ from a, got a = " + formatVec(a) + " and b = " + formatVec(b));
+  Shape s;
+  s.type = type;
+  s.radius = radius;
+  s.vertices = {a, b};
+  const Vec2 n = Vec2(d.y(), -d.x()).normalized();  // right of a → b
+  s.normals = {n, -n};
+  s.extent = computeExtent(s);
+  s.inradius = radius;
+  return s;
 }
 
 void computeNormals(Shape& s) {
@@ -128,6 +148,50 @@ Shape makePolygon(std::span<const Vec2> points) {
   return s;
 }
 
+Shape makeCapsule(const Vec2& a, const Vec2& b, double radius) {
+  return makeTwoPoint(ShapeType::Capsule, a, b, requirePositive("radius", radius));
+}
+
+Shape makeSegment(const Vec2& a, const Vec2& b) { return makeTwoPoint(ShapeType::Segment, a, b, 0.0); }
+
+Shape makeChainSegment(const Vec2& ghost1, const Vec2& a, const Vec2& b, const Vec2& ghost2) {
+  Shape s = makeTwoPoint(ShapeType::ChainSegment, a, b, 0.0);
+  s.ghost1 = requireFinite("ghost1", ghost1);
+  s.ghost2 = requireFinite("ghost2", ghost2);
+  return s;
+}
+
+Shape transformShape(const Shape& shape, const Vec2& offset, double angle) {
+  requireFinite("offset", offset);
+  const Transform xf{offset, Rot::fromAngle(requireFinite("angle", angle))};
+  Shape s = shape;
+  s.center = xf.apply(shape.center);
+  for (Vec2& v : s.vertices) v = xf.apply(v);
+  for (Vec2& n : s.normals) n = xf.q.apply(n);
+  s.ghost1 = xf.apply(shape.ghost1);
+  s.ghost2 = xf.apply(shape.ghost2);
+  if (!isFinite(s.center) || !std::all_of(s.vertices.begin(), s.vertices.end(), [](const Vec2& v) { return isFinite(v); }))
+    throw InputError("offset", "offset " + formatVec(offset) + " puts the shape out of range");
+  s.extent = computeExtent(s);
+  return s;
+}
+
+const char* shapeTypeName(ShapeType t) {
+  switch (t) {
+    case ShapeType::Circle: return "circle";
+    case ShapeType::Polygon: return "polygon";
+    case ShapeType::Capsule: return "capsule";
+    case ShapeType::Segment: return "segment";
+    case ShapeType::ChainSegment: return "chain_segment";
+  }
+  return "?";
+}
+
+bool shouldCollide(const Filter& a, const Filter& b) {
+  if (a.group == b.group && a.group != 0) return a.group > 0;
+  return (a.category & b.mask) != 0 && (b.category & a.mask) != 0;
+}
+
 Shape makeBox(double width, double height, const Vec2& center, double angle) {
   const double hx = 0.5 * requirePositive("width", width);
   const double hy = 0.5 * requirePositive("height", height);
@@ -158,6 +222,25 @@ MassData computeMass(const Shape& shape, double density) {
     md.mass = density * md.area;
     md.center = shape.center;
     md.inertia = 0.5 * md.mass * shape.radius * shape.radius;
+    return md;
+  }
+  if (!hasArea(shape.type)) {  // segments: no area, no mass; the centre is the midpoint
+    md.center = 0.5 * (shape.vertices[0] + shape.vertices[1]);
+    return md;
+  }
+  if (shape.type == ShapeType::Capsule) {
+    // A rectangle of length l and width 2r plus two half discs at its ends. About the centre:
+    //   rectangle       m_r (l² + 4r²) / 12
+    //   half discs      each ½ m_h r² about its flat side's middle; its centroid is 4r/(3π) from
+    //                   there, so moving it to the capsule's centre (h = l/2 further) adds, both
+    //                   together (m_c = 2 m_h): m_c (½ r² + h² + 2 h · 4r/(3π))
+    const double r = shape.radius, l = (shape.vertices[1] - shape.vertices[0]).norm(), h = 0.5 * l;
+    const double m_rect = density * 2.0 * r * l, m_disc = density * std::numbers::pi * r * r;
+    const double lc = 4.0 * r / (3.0 * std::numbers::pi);
+    md.area = 2.0 * r * l + std::numbers::pi * r * r;
+    md.mass = m_rect + m_disc;
+    md.center = 0.5 * (shape.vertices[0] + shape.vertices[1]);
+    md.inertia = m_rect * (l * l + 4.0 * r * r) / 12.0 + m_disc * (0.5 * r * r + h * h + 2.0 * h * lc);
     return md;
   }
   // Polygon centroid (origin.md §3), summed relative to vertex 0 for precision far from the origin:
@@ -202,12 +285,22 @@ Aabb computeAabb(const Shape& shape, const Transform& xf) {
     box.lower = box.lower.cwiseMin(p);
     box.upper = box.upper.cwiseMax(p);
   }
+  if (shape.radius > 0.0) {  // capsules
+    box.lower -= Vec2::Constant(shape.radius);
+    box.upper += Vec2::Constant(shape.radius);
+  }
   return box;
 }
 
 bool containsPoint(const Shape& shape, const Transform& xf, const Vec2& p) {
   const Vec2 local = xf.applyInverse(p);
   if (shape.type == ShapeType::Circle) return (local - shape.center).norm() <= shape.radius;
+  if (!hasArea(shape.type)) return false;
+  if (shape.type == ShapeType::Capsule) {
+    const Vec2 a = shape.vertices[0], d = shape.vertices[1] - a;
+    const double t = std::clamp((local - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    return (local - (a + t * d)).norm() <= shape.radius;
+  }
   const size_t n = shape.vertices.size();
   for (size_t i = 0; i < n; ++i) {
     const Vec2& a = shape.vertices[i];

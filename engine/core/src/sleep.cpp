@@ -3,6 +3,7 @@
 // below WorldDef::sleep_linear_speed and sleep_angular_speed; when every body of an island has been
 // that still for WorldDef::time_to_sleep, the whole island sleeps: zero velocity, no integration,
 // no contact solving, no force evaluation. An island with a moving member wakes its sleeping ones.
+// Disabled bodies (World::setEnabled) are never awake and belong to no island.
 // Bodies wake when an awake body touches them (narrow_phase.cpp), when they are edited or pushed
 // (world.cpp), or when a force that forbids sleep is attached (Force::allowsSleep).
 // Islands are found with a union–find over slots in slot order, so the result is deterministic.
@@ -29,10 +30,10 @@ void link(WorldImpl& w, uint32_t a, uint32_t b) {
 }  // namespace
 
 void WorldImpl::wakeIsland(uint32_t slot) {
-  if (slot >= bodies.size() || !alive[slot] || bodies[slot].awake) return;
+  if (slot >= bodies.size() || !alive[slot] || bodies[slot].awake || !bodies[slot].enabled) return;
   const uint32_t id = island.size() > slot ? island[slot] : slot;
   for (uint32_t i = 0; i < bodies.size(); ++i) {
-    if (!alive[i] || (i != slot && (island.size() <= i || island[i] != id))) continue;
+    if (!alive[i] || !bodies[i].enabled || (i != slot && (island.size() <= i || island[i] != id))) continue;
     bodies[i].awake = true;
     bodies[i].sleep_time = 0.0;
   }
@@ -46,7 +47,7 @@ void updateSleep(WorldImpl& w) {
     // sleeping was switched off wake; sleep times restart once it is switched on again.
     for (uint32_t i = 0; i < n; ++i) {
       Body& b = w.bodies[i];
-      if (!w.alive[i] || b.isStatic()) continue;
+      if (!w.alive[i] || !b.isDynamic() || !b.enabled) continue;
       b.sleep_time = 0.0;
       b.awake = true;
     }
@@ -75,7 +76,7 @@ void updateSleep(WorldImpl& w) {
   w.island_parent.resize(n);
   for (uint32_t i = 0; i < n; ++i) w.island_parent[i] = i;
   w.island_dynamic.resize(n);
-  for (uint32_t i = 0; i < n; ++i) w.island_dynamic[i] = w.alive[i] && !w.bodies[i].isStatic();
+  for (uint32_t i = 0; i < n; ++i) w.island_dynamic[i] = w.alive[i] && w.bodies[i].isDynamic() && w.bodies[i].enabled;
   for (const ContactKey& c : w.contact_keys) {
     link(w, c.a, c.b);
     if (!c.deep_overlap) continue;
@@ -90,12 +91,12 @@ void updateSleep(WorldImpl& w) {
   w.island_sleep.assign(n, std::numeric_limits<double>::infinity());
   for (uint32_t i = 0; i < n; ++i) {
     w.island[i] = root(w.island_parent, i);
-    if (!w.alive[i] || w.bodies[i].isStatic()) continue;
+    if (!w.alive[i] || !w.bodies[i].isDynamic() || !w.bodies[i].enabled) continue;
     const double t = w.bodies[i].awake ? w.bodies[i].sleep_time : std::numeric_limits<double>::infinity();
     w.island_sleep[w.island[i]] = std::min(w.island_sleep[w.island[i]], t);
   }
   for (uint32_t i = 0; i < n; ++i) {
-    if (!w.alive[i] || w.bodies[i].isStatic()) continue;
+    if (!w.alive[i] || !w.bodies[i].isDynamic() || !w.bodies[i].enabled) continue;
     Body& b = w.bodies[i];
     const double t = w.island_sleep[w.island[i]];
     if (w.def.sleeping && t >= w.def.time_to_sleep) {

@@ -83,7 +83,7 @@ void World::step(double dt) {
   for (size_t i = 0; i < w.bodies.size(); ++i) {
     if (!w.alive[i]) continue;
     ++s.bodies;
-    if (!w.bodies[i].isStatic()) ++s.dynamic_bodies;
+    if (w.bodies[i].isDynamic()) ++s.dynamic_bodies;
     if (w.isActive(static_cast<uint32_t>(i))) ++s.awake_bodies;
   }
   for (const ForceEntry& f : w.forces) s.forces += f.alive ? 1 : 0;
@@ -147,7 +147,7 @@ const WorldDef& World::settings() const { return impl_->def; }
 void World::setGravity(const Vec2& g) {
   impl_->def.gravity = requireFinite("gravity", g);
   for (Body& b : impl_->bodies) {  // everything may start to move
-    b.awake = true;
+    b.awake = b.enabled;
     b.sleep_time = 0.0;
   }
 }
@@ -185,18 +185,13 @@ void World::setSleeping(bool on) {
   impl_->def.sleeping = on;
   if (!on)
     for (Body& b : impl_->bodies) {
-      b.awake = true;
+      b.awake = b.enabled;
       b.sleep_time = 0.0;
     }
 }
 
 void World::setContinuous(bool on) { impl_->def.continuous = on; }
 
-void World::wake(BodyId id) {
-  WorldImpl& w = *impl_;
-  w.get(id);
-  w.wakeIsland(id.index);
-}
 
 void World::setBroadPhase(BroadPhaseKind kind) {
   impl_->def.broad_phase = kind;
@@ -264,337 +259,6 @@ std::optional<PositionCorrection> parsePositionCorrection(std::string_view name)
 }
 
 // ---------------------------------------------------------------------------------------------
-// Bodies
-
-namespace {
-
-void requireUnlocked(const WorldImpl& w, const char* what) {
-  if (w.locked)
-    throw InputError(what, std::string(what) + " is not allowed while the world is stepping (e.g. from inside a force)");
-}
-
-Shape validatedShape(const Shape& s) {
-  if (s.type == ShapeType::Circle) return makeCircle(s.radius, s.center);
-  return makePolygon(s.vertices);  // re-validates and normalises a hand-built polygon
-}
-
-// `field` and `value`: the input the density came from, for the error message.
-void setMassData(Body& b, double density, const char* field, double value) {
-  const MassData md = computeMass(b.shape, density);
-  // A mass or inertia whose inverse is not finite (a denormal mass: 1/4.9e-324 = inf) or that
-  // overflowed (density 1e308 on a large shape) would reach the solver as ∞ or 0·∞ = NaN.
-  const auto usable = [](double x) { return std::isfinite(x) && x > 0.0 && std::isfinite(1.0 / x); };
-  if (!usable(md.mass) || !usable(md.inertia))
-    throw InputError(field, "mass and moment of inertia must be finite with finite inverses, got " +
-                                formatNumber(md.mass) + " kg and " + formatNumber(md.inertia) + " kg·m² (from " + field +
-                                " " + formatNumber(value) + " and the shape's size)");
-  b.density = density;
-  b.area = md.area;
-  b.mass = md.mass;
-  b.inertia = md.inertia;
-  b.local_center = md.center;
-  b.inv_mass = b.isStatic() ? 0.0 : 1.0 / b.mass;
-  b.inv_inertia = b.isStatic() ? 0.0 : 1.0 / b.inertia;
-}
-
-// Sets the body's transform and centre of mass from its origin and angle. A finite position near
-// the largest double can still put the centre of mass (position + the rotated centre offset) out
-// of range: refused naming position, so that no body starts with a non-finite state (fuzz_world).
-void place(Body& b, const Vec2& position, double angle) {
-  const Transform xf{position, Rot::fromAngle(angle)};
-  const Vec2 center = xf.apply(b.local_center);
-  if (!isFinite(center))
-    throw InputError("position", "position " + formatVec(position) + " puts the centre of mass out of range, at " + formatVec(center));
-  b.angle = angle;
-  b.xf = xf;
-  b.center = center;
-}
-
-Material validatedMaterial(double restitution, double friction, double static_friction) {
-  requireNonNegative("restitution", restitution);
-  if (restitution > 1.0)
-    throw InputError("restitution", "restitution must be between 0 and 1, got " + formatNumber(restitution));
-  return {restitution, requireNonNegative("friction", friction), requireNonNegative("static_friction", static_friction)};
-}
-
-}  // namespace
-
-Body& WorldImpl::get(BodyId id) {
-  if (!isLive(id)) throw InputError("body", "body handle is not valid (the body was removed or never existed)");
-  return bodies[id.index];
-}
-const Body& WorldImpl::get(BodyId id) const { return const_cast<WorldImpl*>(this)->get(id); }
-
-BodyState WorldImpl::stateOf(const Body& b) {
-  BodyState s;
-  s.position = b.xf.p;
-  s.center = b.center;
-  s.angle = b.angle;
-  s.q = b.xf.q;
-  s.velocity = b.velocity;
-  s.angular_velocity = b.angular_velocity;
-  s.mass = b.mass;
-  s.inertia = b.inertia;
-  s.is_static = b.isStatic();
-  s.id = b.id;
-  s.uid = b.uid;
-  return s;
-}
-
-BodyId World::createBody(const BodyDef& def) {
-  WorldImpl& w = *impl_;
-  requireUnlocked(w, "createBody");
-  Body b;
-  b.uid = w.next_uid++;
-  b.name = def.name;
-  b.type = def.type;
-  b.shape = validatedShape(def.shape);
-  const Vec2 position = requireFinite("position", def.position);
-  const double angle = requireFinite("angle", def.angle);
-  b.material = validatedMaterial(def.restitution, def.friction, def.static_friction.value_or(def.friction));
-  double density = def.density;
-  if (def.mass) {
-    requirePositive("mass", *def.mass);
-    density = *def.mass / computeMass(b.shape, 1.0).area;
-    setMassData(b, density, "mass", *def.mass);
-  } else {
-    requirePositive("density", density);
-    setMassData(b, density, "density", density);
-  }
-  place(b, position, angle);
-  if (!b.isStatic()) {
-    b.velocity = requireFinite("velocity", def.velocity);
-    b.angular_velocity = requireFinite("angular_velocity", def.angular_velocity);
-  }
-
-  uint32_t index;
-  if (!w.free_bodies.empty()) {
-    index = w.free_bodies.back();
-    w.free_bodies.pop_back();
-    b.id = {index, w.bodies[index].id.generation + 1};
-    w.bodies[index] = std::move(b);
-    w.alive[index] = 1;
-  } else {
-    index = static_cast<uint32_t>(w.bodies.size());
-    b.id = {index, 0};
-    w.bodies.push_back(std::move(b));
-    w.alive.push_back(1);
-  }
-  return w.bodies[index].id;
-}
-
-void World::destroyBody(BodyId id) {
-  WorldImpl& w = *impl_;
-  requireUnlocked(w, "destroyBody");
-  w.get(id);
-  for (uint32_t i = 0; i < w.forces.size(); ++i) {
-    const ForceEntry& f = w.forces[i];
-    if (f.alive && (f.a == id || f.b == id)) removeForce({i, f.generation});
-  }
-  for (const Contact& c : w.contacts) {  // what rested on it may now fall
-    if (c.a == id.index) w.wakeIsland(c.b);
-    if (c.b == id.index) w.wakeIsland(c.a);
-  }
-  Body& b = w.bodies[id.index];
-  const BodyId old = b.id;
-  b = Body{};
-  b.id = old;  // keeps the generation, so the next body in this slot gets a new one
-  b.uid = 0;
-  w.alive[id.index] = 0;
-  w.free_bodies.push_back(id.index);
-  // Drop contacts (and their keys, which stay index for index with them) that refer to the slot,
-  // so contacts() never names a dead body.
-  const auto refersToSlot = [&](const auto& c) { return c.a == id.index || c.b == id.index; };
-  std::erase_if(w.contacts, refersToSlot);
-  std::erase_if(w.previous_contacts, refersToSlot);
-  std::erase_if(w.contact_keys, refersToSlot);
-}
-
-bool World::isValid(BodyId id) const { return impl_->isLive(id); }
-const Body& World::body(BodyId id) const { return impl_->get(id); }
-
-std::vector<BodyId> World::bodyIds() const {
-  std::vector<BodyId> ids;
-  for (size_t i = 0; i < impl_->bodies.size(); ++i)
-    if (impl_->alive[i]) ids.push_back(impl_->bodies[i].id);
-  return ids;
-}
-
-int World::bodyCount() const { return static_cast<int>(std::count(impl_->alive.begin(), impl_->alive.end(), 1)); }
-
-std::optional<BodyId> World::findBody(std::string_view name) const {
-  for (size_t i = 0; i < impl_->bodies.size(); ++i)
-    if (impl_->alive[i] && impl_->bodies[i].name == name) return impl_->bodies[i].id;
-  return std::nullopt;
-}
-
-std::optional<BodyId> World::findBody(uint32_t uid) const {
-  for (size_t i = 0; i < impl_->bodies.size(); ++i)
-    if (impl_->alive[i] && impl_->bodies[i].uid == uid) return impl_->bodies[i].id;
-  return std::nullopt;
-}
-
-void World::setTransform(BodyId id, const Vec2& position, double angle) {
-  requireUnlocked(*impl_, "setTransform");
-  Body& b = impl_->get(id);
-  impl_->wakeIsland(id.index);
-  requireFinite("position", position);
-  requireFinite("angle", angle);
-  place(b, position, angle);
-}
-
-void World::setVelocity(BodyId id, const Vec2& velocity) {
-  requireUnlocked(*impl_, "setVelocity");
-  Body& b = impl_->get(id);
-  impl_->wakeIsland(id.index);
-  requireFinite("velocity", velocity);
-  if (!b.isStatic()) b.velocity = velocity;
-}
-
-void World::setAngularVelocity(BodyId id, double angular_velocity) {
-  requireUnlocked(*impl_, "setAngularVelocity");
-  Body& b = impl_->get(id);
-  impl_->wakeIsland(id.index);
-  requireFinite("angular_velocity", angular_velocity);
-  if (!b.isStatic()) b.angular_velocity = angular_velocity;
-}
-
-void World::setType(BodyId id, BodyType type) {
-  requireUnlocked(*impl_, "setType");
-  Body& b = impl_->get(id);
-  impl_->wakeIsland(id.index);
-  b.type = type;
-  if (type == BodyType::Dynamic) b.frozen = false;
-  if (b.isStatic()) {
-    b.velocity = Vec2::Zero();
-    b.angular_velocity = 0.0;
-  }
-  setMassData(b, b.density, "density", b.density);  // valid when the body was made
-}
-
-void World::setMass(BodyId id, double mass) {
-  requireUnlocked(*impl_, "setMass");
-  Body& b = impl_->get(id);
-  impl_->wakeIsland(id.index);
-  requirePositive("mass", mass);
-  setMassData(b, mass / b.area, "mass", mass);  // refuses before changing anything
-}
-
-void World::setMaterial(BodyId id, const Material& m) {
-  requireUnlocked(*impl_, "setMaterial");
-  impl_->get(id).material = validatedMaterial(m.restitution, m.friction, m.static_friction);
-}
-
-void World::setName(BodyId id, std::string name) {
-  requireUnlocked(*impl_, "setName");
-  impl_->get(id).name = std::move(name);
-}
-
-void World::applyImpulse(BodyId id, const Vec2& impulse, const Vec2& world_point) {
-  requireUnlocked(*impl_, "applyImpulse");
-  Body& b = impl_->get(id);
-  impl_->wakeIsland(id.index);
-  requireFinite("impulse", impulse);
-  requireFinite("point", world_point);
-  // Δv = J / m, Δω = (p − c) × J / I.
-  b.velocity += b.inv_mass * impulse;
-  b.angular_velocity += b.inv_inertia * cross(world_point - b.center, impulse);
-}
-
-BodyState World::bodyState(BodyId id) const { return WorldImpl::stateOf(impl_->get(id)); }
-
-// ---------------------------------------------------------------------------------------------
-// Forces
-
-namespace {
-ForceEntry& liveForce(WorldImpl& w, ForceId id) {
-  if (id.index >= w.forces.size() || !w.forces[id.index].alive || w.forces[id.index].generation != id.generation)
-    throw InputError("force", "force handle is not valid (the force was removed or has expired)");
-  return w.forces[id.index];
-}
-}  // namespace
-
-ForceId World::addForce(std::unique_ptr<Force> force, BodyId a, BodyId b, double duration) {
-  WorldImpl& w = *impl_;
-  requireUnlocked(w, "addForce");
-  if (!force) throw InputError("force", "force is null");
-  w.get(a);
-  if (!b.isNull()) {
-    w.get(b);
-    if (a == b) throw InputError("b", "a two-body force needs two different bodies");
-  }
-  if (!(duration > 0.0) && duration != kNextStep)
-    throw InputError("duration", "duration must be > 0, got " + formatNumber(duration));
-  ForceEntry e;
-  e.force = std::move(force);
-  e.a = a;
-  e.b = b;
-  e.next_step_only = duration == kNextStep;
-  e.expires_at = duration == kForever || e.next_step_only ? kForever : w.clock.t + duration;
-  w.wakeIsland(a.index);
-  if (!b.isNull()) w.wakeIsland(b.index);
-  e.alive = true;
-  uint32_t index;
-  if (!w.free_forces.empty()) {
-    index = w.free_forces.back();
-    w.free_forces.pop_back();
-    e.generation = w.forces[index].generation;
-    w.forces[index] = std::move(e);
-  } else {
-    index = static_cast<uint32_t>(w.forces.size());
-    w.forces.push_back(std::move(e));
-  }
-  return {index, w.forces[index].generation};
-}
-
-ForceId World::addSpring(const SpringDef& def, double duration) {
-  WorldImpl& w = *impl_;
-  SpringDef d = def;
-  const BodyState a = WorldImpl::stateOf(w.get(def.a));
-  if (!d.rest_length) {
-    // Default rest length: the distance between the ends now.
-    const Vec2 pa = a.worldPoint(requireFinite("local_a", d.local_a));
-    const Vec2 pb = d.b.isNull() ? requireFinite("anchor", d.anchor)
-                                 : WorldImpl::stateOf(w.get(d.b)).worldPoint(requireFinite("local_b", d.local_b));
-    d.rest_length = (pb - pa).norm();
-  }
-  return addForce(std::make_unique<SpringForce>(d), d.a, d.b, duration);
-}
-
-ForceId World::addDamper(const DamperDef& def, double duration) {
-  return addForce(std::make_unique<DamperForce>(def), def.body, {}, duration);
-}
-
-void World::removeForce(ForceId id) {
-  WorldImpl& w = *impl_;
-  requireUnlocked(w, "removeForce");
-  ForceEntry& f = liveForce(w, id);
-  w.wakeIsland(f.a.index);  // what the force held may now move
-  if (!f.b.isNull()) w.wakeIsland(f.b.index);
-  f.alive = false;
-  f.force.reset();
-  ++f.generation;
-  w.free_forces.push_back(id.index);
-}
-
-bool World::isValid(ForceId id) const {
-  const WorldImpl& w = *impl_;
-  return id.index < w.forces.size() && w.forces[id.index].alive && w.forces[id.index].generation == id.generation;
-}
-Force& World::force(ForceId id) { return *liveForce(*impl_, id).force; }
-const Force& World::force(ForceId id) const { return *liveForce(*impl_, id).force; }
-BodyId World::forceBodyA(ForceId id) const { return liveForce(*impl_, id).a; }
-BodyId World::forceBodyB(ForceId id) const { return liveForce(*impl_, id).b; }
-double World::forceTimeLeft(ForceId id) const { return liveForce(*impl_, id).expires_at - impl_->clock.t; }
-
-std::vector<ForceId> World::forceIds() const {
-  std::vector<ForceId> ids;
-  for (uint32_t i = 0; i < impl_->forces.size(); ++i)
-    if (impl_->forces[i].alive) ids.push_back({i, impl_->forces[i].generation});
-  return ids;
-}
-
-// ---------------------------------------------------------------------------------------------
 // Queries
 
 double World::time() const { return impl_->clock.t; }
@@ -606,7 +270,7 @@ double World::kineticEnergy() const {
   double e = 0.0;
   for (size_t i = 0; i < impl_->bodies.size(); ++i) {
     const Body& b = impl_->bodies[i];
-    if (!impl_->alive[i] || b.isStatic()) continue;
+    if (!impl_->alive[i] || !b.isDynamic()) continue;
     e += 0.5 * b.mass * b.velocity.squaredNorm() + 0.5 * b.inertia * b.angular_velocity * b.angular_velocity;
   }
   return e;
@@ -616,7 +280,7 @@ double World::gravityPotentialEnergy() const {
   double e = 0.0;
   for (size_t i = 0; i < impl_->bodies.size(); ++i) {
     const Body& b = impl_->bodies[i];
-    if (impl_->alive[i] && !b.isStatic()) e -= b.mass * impl_->def.gravity.dot(b.center);
+    if (impl_->alive[i] && b.isDynamic()) e -= b.mass * b.gravity_scale * impl_->def.gravity.dot(b.center);
   }
   return e;
 }
@@ -641,7 +305,9 @@ std::optional<BodyId> World::bodyAt(const Vec2& point) const {
   // Later slots are drawn on top, so search from the back.
   for (size_t i = impl_->bodies.size(); i-- > 0;) {
     const Body& b = impl_->bodies[i];
-    if (impl_->alive[i] && containsPoint(b.shape, b.xf, point)) return b.id;
+    if (!impl_->alive[i]) continue;
+    for (ShapeId s : b.shapes)
+      if (containsPoint(impl_->shapes[s.index].geometry, b.xf, point)) return b.id;
   }
   return std::nullopt;
 }
@@ -652,6 +318,8 @@ std::vector<ContactInfo> World::contacts() const {
     ContactInfo info;
     info.a = impl_->bodies[c.a].id;
     info.b = impl_->bodies[c.b].id;
+    info.shape_a = impl_->shapes[c.shape_a].id;
+    info.shape_b = impl_->shapes[c.shape_b].id;
     info.normal = c.normal;
     info.count = c.count;
     for (int i = 0; i < c.count; ++i) {

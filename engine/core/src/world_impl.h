@@ -8,6 +8,8 @@
 
 #include "broad_phase.h"
 #include "contact.h"
+#include "manifold.h"
+#include "rigidlab/error.h"
 #include "rigidlab/world.h"
 
 namespace rigidlab {
@@ -41,6 +43,12 @@ struct WorldImpl {
   std::vector<Body> bodies;
   std::vector<char> alive;
   std::vector<uint32_t> free_bodies;
+  // Shapes by slot (ShapeId::index), reused the same way: a world of one-shape bodies has each
+  // shape in its body's slot. The broad phase, the pairs and the contacts are per shape.
+  std::vector<BodyShape> shapes;
+  std::vector<char> shape_alive;
+  std::vector<uint32_t> free_shapes;
+  uint32_t chains = 0;  // chains made so far (BodyShape::chain)
 
   std::vector<ForceEntry> forces;
   std::vector<uint32_t> free_forces;
@@ -112,13 +120,20 @@ struct WorldImpl {
 
   std::unique_ptr<BroadPhase> broad_phase;
   std::vector<Proxy> proxies;
-  std::vector<uint32_t> statics;  // static body slots (continuous.cpp)
+  std::vector<uint32_t> statics;  // shape slots of static bodies (continuous.cpp)
   std::vector<char> ccd_hit;      // per slot: stopped by continuous collision detection this step
   std::vector<Vec2> world_vertices, world_normals;  // every polygon placed in the world this step
-  std::vector<uint32_t> polygon_offset;             // per slot: where its polygon starts in them
-  std::vector<BodyPair> pairs;
+  std::vector<uint32_t> polygon_offset;             // per shape slot: where its polygon starts in them
+  // Per shape slot, written by the broad phase each step: what the narrow phase reads per pair.
+  struct ShapeView {
+    PlacedShape placed;  // the geometry, its body's transform, the world polygon
+    uint32_t body;       // slot
+    bool special;        // a sensor or a filter other than the default: the narrow phase looks closer
+  };
+  std::vector<ShapeView> shape_views;
+  std::vector<BodyPair> pairs;             // shape slots
   PairCache pair_cache;  // broad_phase.cpp
-  std::vector<Contact> contacts;           // this step's, sorted by (a, b)
+  std::vector<Contact> contacts;           // this step's, sorted by (shape_a, shape_b)
   std::vector<ContactKey> contact_keys;    // the same contacts' bodies (contact.h)
   std::vector<uint32_t> solved;            // indices of the contacts sequential impulses work on
   std::vector<uint32_t> soft_solved;       // indices of the contacts the soft step works on
@@ -136,13 +151,31 @@ struct WorldImpl {
   std::vector<double> island_sleep;     // per island root: the shortest sleep time of its members
   std::vector<char> keep_awake;         // per slot: a force that forbids sleep acts on it
   void wakeIsland(uint32_t slot);
-  bool isActive(uint32_t slot) const { return alive[slot] && !bodies[slot].isStatic() && bodies[slot].awake; }
+  // Dynamic and awake (a disabled body is never awake): integrated, solved.
+  bool isActive(uint32_t slot) const { return alive[slot] && bodies[slot].isDynamic() && bodies[slot].awake; }
 
   bool isLive(BodyId id) const {
     return id.index < bodies.size() && alive[id.index] && bodies[id.index].id.generation == id.generation;
   }
   Body& get(BodyId id);              // throws InputError("body", ...) for a stale handle
   const Body& get(BodyId id) const;
+  bool isLive(ShapeId id) const {
+    return id.index < shapes.size() && shape_alive[id.index] && shapes[id.index].id.generation == id.generation;
+  }
+  BodyShape& get(ShapeId id);        // throws InputError("shape", ...) for a stale handle
+  // Recomputes the body's mass, centre of mass and inertia from its shapes (world_shape.cpp);
+  // `field`, `value`: what the densities came from, for the error message.
+  void updateMass(Body& b, const char* field, double value);
+  // Validates and attaches a shape to the body in `body` (world_shape.cpp); returns its slot.
+  uint32_t attachShape(uint32_t body, const ShapeDef& def, const char* field, double value);
+  void releaseShape(uint32_t index);  // frees the slot (the caller fixes the body's list)
+  static Shape validatedShape(const Shape& s);
+  // "mass and moment of inertia must be finite with finite inverses, got ..." naming `field`.
+  static InputError massError(const char* field, double mass, double inertia, double value);
+  static Material validatedMaterial(double restitution, double friction, double static_friction);
+  // InputError("<what> is not allowed while the world is stepping ...") during a step.
+  void requireUnlocked(const char* what) const;
+  const Body& bodyOf(uint32_t shape) const { return bodies[shapes[shape].body.index]; }
 
   // Recomputes the origin transform from the centre of mass and angle.
   static void syncTransform(Body& b) {

@@ -103,16 +103,19 @@ sol::object bodyIndex(sol::this_state ts, const LuaBody& self, sol::stack_object
   if (k == "static") return sol::make_object(L, b.isStatic());
   if (k == "awake") return sol::make_object(L, !b.isStatic() && b.awake);
   if (k == "name") return sol::make_object(L, b.name);
-  if (k == "restitution") return sol::make_object(L, b.material.restitution);
-  if (k == "friction") return sol::make_object(L, b.material.friction);
-  if (k == "static_friction") return sol::make_object(L, b.material.static_friction);
-  if (k == "shape") return sol::make_object(L, b.shape.type == ShapeType::Circle ? "circle" : "polygon");
-  if (k == "radius") return b.shape.type == ShapeType::Circle ? sol::make_object(L, b.shape.radius) : sol::make_object(L, sol::lua_nil);
+  if (b.shapes.empty()) return sol::make_object(L, sol::lua_nil);
+  const BodyShape& first = worldOf(self).shape(b.shapes.front());
+  const Shape& shape = first.geometry;
+  if (k == "restitution") return sol::make_object(L, first.material.restitution);
+  if (k == "friction") return sol::make_object(L, first.material.friction);
+  if (k == "static_friction") return sol::make_object(L, first.material.static_friction);
+  if (k == "shape") return sol::make_object(L, shape.type == ShapeType::Polygon ? "polygon" : shapeTypeName(shape.type));
+  if (k == "radius") return shape.type == ShapeType::Circle ? sol::make_object(L, shape.radius) : sol::make_object(L, sol::lua_nil);
   // vertices
-  if (b.shape.type != ShapeType::Polygon) return sol::make_object(L, sol::lua_nil);
-  lua_createtable(L, static_cast<int>(b.shape.vertices.size()), 0);
-  for (size_t i = 0; i < b.shape.vertices.size(); ++i) {
-    pushVec(L, b.shape.vertices[i]);
+  if (shape.type != ShapeType::Polygon) return sol::make_object(L, sol::lua_nil);
+  lua_createtable(L, static_cast<int>(shape.vertices.size()), 0);
+  for (size_t i = 0; i < shape.vertices.size(); ++i) {
+    pushVec(L, shape.vertices[i]);
     lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
   }
   return sol::stack::pop<sol::object>(L);
@@ -154,7 +157,7 @@ void bodyNewIndex(sol::this_state ts, const LuaBody& self, sol::stack_object key
       if (value.get_type() != sol::type::string) fail(L, function, "must be a string, got " + describe(value));
       w.setName(id, value.as<std::string>());
     } else {
-      Material m = b.material;
+      Material m = b.shapes.empty() ? Material{} : w.shape(b.shapes.front()).material;
       const double x = numberArg(L, function, "value", value);
       if (k == "restitution") m.restitution = x;
       if (k == "friction") m.friction = x;

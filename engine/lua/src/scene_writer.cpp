@@ -142,21 +142,23 @@ void writeSettings(Writer& w, const World& world, const SceneSettings& settings)
   w.raw("}\n\n");
 }
 
-void writeBody(Writer& w, const Body& b, int index) {
+void writeBody(Writer& w, const World& world, const Body& b, int index) {
   const std::string path = "bodies[" + std::to_string(index) + "]";
+  const BodyShape& first = world.shape(b.shapes.front());
+  const Shape& shape = first.geometry;
   w.raw("    {");
   Vec2 position = b.xf.p;
-  if (b.shape.type == ShapeType::Circle) {
+  if (shape.type == ShapeType::Circle) {
     // The Lua API places a circle's centre at the body origin; a C++ body may offset it. Moving the
     // origin onto the centre describes the same physical body (same centre of mass and motion).
-    position = b.xf.apply(b.shape.center);
+    position = b.xf.apply(shape.center);
     w.raw("shape = \"circle\", ");
-    w.field("radius", path, b.shape.radius);
+    w.field("radius", path, shape.radius);
   } else {
     w.raw("shape = \"polygon\", vertices = {");
-    for (size_t i = 0; i < b.shape.vertices.size(); ++i) {
+    for (size_t i = 0; i < shape.vertices.size(); ++i) {
       if (i > 0) w.raw(", ");
-      w.vec(path + ".vertices[" + std::to_string(i + 1) + "]", b.shape.vertices[i]);
+      w.vec(path + ".vertices[" + std::to_string(i + 1) + "]", shape.vertices[i]);
     }
     w.raw("}, ");
   }
@@ -167,9 +169,9 @@ void writeBody(Writer& w, const Body& b, int index) {
   w.field("angular_velocity", path, b.angular_velocity);
   w.wrap();
   w.field("mass", path, b.mass);
-  w.field("restitution", path, b.material.restitution);
-  w.field("friction", path, b.material.friction);
-  w.field("static_friction", path, b.material.static_friction);
+  w.field("restitution", path, first.material.restitution);
+  w.field("friction", path, first.material.friction);
+  w.field("static_friction", path, first.material.static_friction);
   w.raw(b.isStatic() ? "static = true" : "static = false");
   if (!b.name.empty()) {
     w.raw(", name = ");
@@ -195,7 +197,7 @@ std::string sceneSource(const World& world, const SceneSettings& settings) {
   int count = 0;
   for (const BodyId id : world.bodyIds()) {
     index_of_slot[id.index] = ++count;
-    writeBody(w, world.body(id), count);
+    writeBody(w, world, world.body(id), count);
   }
   w.raw("  },\n");
 

@@ -309,8 +309,9 @@ void bodyWindow(Session& s, PanelState& p) {
   ImGui::SetNextWindowSize(ImVec2(kLeftWidth + 40, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("Body");
   const Body& b = w.body(s.selected);
-  ImGui::Text("#%u %s   area %.4g m2   I %.4g kg m2", b.uid, b.shape.type == ShapeType::Circle ? "circle" : "polygon",
-              b.area, b.inertia);
+  const char* kind = b.shapes.size() == 1 ? shapeTypeName(w.shape(b.shapes[0]).geometry.type)
+                     : b.shapes.empty() ? "no shape" : "compound";
+  ImGui::Text("#%u %s   area %.4g m2   I %.4g kg m2", b.uid, kind, b.area, b.inertia);
   const bool editable = s.paused;
   if (!editable) ImGui::TextColored(kDimColor, "pause (Space) to edit");
   const BodyProps current = captureProps(w, s.selected);

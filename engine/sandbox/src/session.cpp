@@ -245,12 +245,14 @@ std::optional<Aabb> worldBounds(const World& world) {
   std::optional<Aabb> box;
   for (const BodyId id : world.bodyIds()) {
     const Body& b = world.body(id);
-    const Aabb a = computeAabb(b.shape, b.xf);
-    if (!box) {
-      box = a;
-    } else {
-      box->lower = box->lower.cwiseMin(a.lower);
-      box->upper = box->upper.cwiseMax(a.upper);
+    for (const ShapeId sid : b.shapes) {
+      const Aabb a = computeAabb(world.shape(sid).geometry, b.xf);
+      if (!box) {
+        box = a;
+      } else {
+        box->lower = box->lower.cwiseMin(a.lower);
+        box->upper = box->upper.cwiseMax(a.upper);
+      }
     }
   }
   return box;
@@ -264,7 +266,8 @@ namespace {
 
 std::string describe(const World& world, BodyId id) {
   const Body& b = world.body(id);
-  const std::string shape = b.shape.type == ShapeType::Circle ? "circle" : "polygon";
+  const std::string shape = b.shapes.size() == 1 ? shapeTypeName(world.shape(b.shapes[0]).geometry.type)
+                            : b.shapes.empty() ? "body" : "compound body";
   return b.name.empty() ? shape + " #" + std::to_string(b.uid) : "'" + b.name + "'";
 }
 

@@ -14,7 +14,8 @@ bool operator==(const BodyProps& a, const BodyProps& b) {
 
 BodyProps captureProps(const World& world, BodyId id) {
   const Body& b = world.body(id);
-  return {b.type, b.xf.p, b.angle, b.velocity, b.angular_velocity, b.mass, b.material, b.name};
+  const Material m = b.shapes.empty() ? Material{} : world.shape(b.shapes.front()).material;
+  return {b.type, b.xf.p, b.angle, b.velocity, b.angular_velocity, b.mass, m, b.name};
 }
 
 void applyProps(World& world, BodyId id, const BodyProps& p) {
@@ -43,16 +44,27 @@ UndoHistory::Snapshot UndoHistory::snapshotOf(const World& world, BodyId id) {
   const Body& b = world.body(id);
   Snapshot s;
   s.def.type = b.type;
-  s.def.shape = b.shape;
   s.def.position = b.xf.p;
   s.def.angle = b.angle;
-  s.def.velocity = b.velocity;
-  s.def.angular_velocity = b.angular_velocity;
-  s.def.mass = b.mass;
-  s.def.restitution = b.material.restitution;
-  s.def.friction = b.material.friction;
-  s.def.static_friction = b.material.static_friction;
   s.def.name = b.name;
+  s.def.linear_damping = b.linear_damping;
+  s.def.angular_damping = b.angular_damping;
+  s.def.gravity_scale = b.gravity_scale;
+  s.def.fixed_rotation = b.fixed_rotation;
+  s.def.bullet = b.bullet;
+  s.def.enabled = b.enabled;
+  s.velocity = b.velocity;
+  s.angular_velocity = b.angular_velocity;
+  for (const ShapeId sid : b.shapes) {
+    const BodyShape& shape = world.shape(sid);
+    ShapeDef d;
+    d.shape = shape.geometry;
+    d.density = shape.density;
+    d.material = shape.material;
+    d.filter = shape.filter;
+    d.sensor = shape.sensor;
+    s.shapes.push_back(d);
+  }
   for (const ForceId fid : world.forceIds()) {
     const BodyId a = world.forceBodyA(fid), other_b = world.forceBodyB(fid);
     if (a != id && other_b != id) continue;
@@ -78,7 +90,12 @@ UndoHistory::Snapshot UndoHistory::snapshotOf(const World& world, BodyId id) {
 }
 
 BodyId UndoHistory::restore(World& world, Ref ref, const Snapshot& s) {
+  // The shapes first, then the velocity: adding a shape moves the centre of mass, which would
+  // otherwise change the velocity of a turning body.
   const BodyId id = world.createBody(s.def);
+  for (const ShapeDef& d : s.shapes) world.createShape(id, d);
+  world.setVelocity(id, s.velocity);
+  world.setAngularVelocity(id, s.angular_velocity);
   refs_[ref] = id;
   for (const AttachedForce& f : s.forces) {
     if (!(f.time_left > 0.0)) continue;

@@ -71,7 +71,10 @@ class UndoHistory {
     double time_left = World::kForever;
   };
   struct Snapshot {
-    BodyDef def;
+    BodyDef def;  // without its shapes and velocity (restore adds them in that order)
+    std::vector<ShapeDef> shapes;
+    Vec2 velocity = Vec2::Zero();
+    double angular_velocity = 0.0;
     std::vector<AttachedForce> forces;
     int lost_forces = 0;  // forces on the body that cannot be rebuilt (code, not data)
   };

@@ -1,9 +1,11 @@
-// Rigid bodies: one shape each, static or dynamic (origin.md §3 "Bodies").
+// Rigid bodies: static, kinematic or dynamic, made of one or more shapes (origin.md §3 "Bodies";
+// docs/physics.md "Bodies").
 #pragma once
 
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "rigidlab/math.h"
 #include "rigidlab/shape.h"
@@ -20,33 +22,42 @@ struct BodyId {
   friend bool operator==(const BodyId&, const BodyId&) = default;
 };
 
-// Static bodies have infinite mass: no force acts on them and integration skips them. A body can
-// switch between the two at run time (World::setType).
-enum class BodyType { Static, Dynamic };
+// Static bodies never move; no force acts on them. Kinematic bodies move by their velocity alone
+// (no gravity, no forces, no contact impulses: infinite mass) and push dynamic bodies, which they
+// carry by friction. Dynamic bodies respond to everything. A body can switch at run time
+// (World::setType).
+enum class BodyType : uint8_t { Static, Kinematic, Dynamic };
+const char* bodyTypeName(BodyType t);  // "static", "kinematic", "dynamic"
 
-// Surface material. When two bodies touch, their values combine as (README "Materials"):
-//   restitution  e  = max(e_A, e_B)            a bouncy ball bounces on any floor
-//   friction     μ  = sqrt(μ_A · μ_B)          for both dynamic and static friction;
-//                                               a frictionless body slides on anything
-struct Material {
-  double restitution = 0.0;      // Newton's coefficient, 0 (plastic) … 1 (elastic)
-  double friction = 0.6;         // dynamic (sliding) friction coefficient f_d ≥ 0
-  double static_friction = 0.6;  // static friction coefficient f_s ≥ 0 (holds up to f_s·F_n)
-};
-
-// Everything needed to create a body. Every field has a default except the shape.
+// Everything needed to create a body. Every field has a default. `shape`, if given, becomes the
+// body's first shape with the material, density and filter below (a one-shape body); more shapes
+// are added with World::createShape.
 struct BodyDef {
   BodyType type = BodyType::Dynamic;
-  Shape shape;                                 // makeCircle / makeBox / makePolygon
+  std::optional<Shape> shape;                  // makeCircle / makeBox / makePolygon / makeCapsule / ...
   Vec2 position = Vec2::Zero();                // world position of the body origin [m]
   double angle = 0.0;                          // [rad], counter-clockwise
-  Vec2 velocity = Vec2::Zero();                // of the centre of mass [m/s]
+  Vec2 velocity = Vec2::Zero();                // of the centre of mass [m/s] (static: must be zero)
   double angular_velocity = 0.0;               // [rad/s]
-  double density = 1.0;                        // [kg/m²], used when `mass` is not given
+  double density = 1.0;                        // [kg/m²] of `shape`, used when `mass` is not given
   std::optional<double> mass;                  // [kg]; overrides density (density = mass / area)
-  double restitution = 0.0;                    // see Material
-  double friction = 0.6;                       // dynamic friction
+  double restitution = 0.0;                    // of `shape`, see Material
+  double friction = 0.6;                       // dynamic friction of `shape`
   std::optional<double> static_friction;       // defaults to `friction`
+  Filter filter;                               // of `shape`
+  bool sensor = false;                         // `shape` is a sensor
+  // Damping of the body's own motion, implicit: v ← v / (1 + h c) per step, so it never flips a
+  // velocity whatever c and the step h [1/s] ≥ 0.
+  double linear_damping = 0.0;
+  double angular_damping = 0.0;
+  double gravity_scale = 1.0;                  // multiplies the world's gravity for this body
+  bool fixed_rotation = false;                 // never turns (infinite inertia), contacts included
+  // Swept against dynamic bodies too (every body is swept against static ones), so a fast small
+  // body does not pass through a thin moving one.
+  bool bullet = false;
+  // A disabled body is out of the simulation (no contacts, no motion, no forces) but keeps its id,
+  // shapes and state, and comes back where it was when enabled again.
+  bool enabled = true;
   std::string name;                            // optional, for lookups and messages
 };
 
@@ -55,42 +66,65 @@ struct BodyDef {
 struct Body {
   BodyId id;
   uint32_t uid = 0;  // 1, 2, 3, ... in creation order, never reused: the id scripts and reports show
-  std::string name;
   BodyType type = BodyType::Dynamic;
-  Shape shape;
-  Material material;
-
-  // Mass properties. `mass` and `inertia` are those of the shape even for a static body (so it can
-  // be switched back to dynamic); the inverse values are 0 for a static body.
-  double density = 1.0;          // kg/m²
-  double area = 0.0;             // m²
-  double mass = 0.0;             // kg
-  double inertia = 0.0;          // kg·m², about the centre of mass
-  double inv_mass = 0.0;
-  double inv_inertia = 0.0;
-  Vec2 local_center = Vec2::Zero();  // centre of mass in body coordinates
-
-  // State. The centre of mass is what is integrated; the origin transform follows from it.
-  Vec2 center = Vec2::Zero();    // world centre of mass [m]
-  double angle = 0.0;            // [rad]
-  Vec2 velocity = Vec2::Zero();  // centre-of-mass velocity [m/s]
-  double angular_velocity = 0.0; // [rad/s]
-  Transform xf;                  // body origin → world
-
+  bool enabled = true;  // BodyDef::enabled
+  // Sleeping (World::step, sleep.cpp): a dynamic body whose island has been nearly still for
+  // WorldDef::time_to_sleep stops being simulated until something touches, pushes or edits it.
+  bool awake = true;
   // Set by the NaN firewall (World::incidents): the body's state became non-finite during a step,
   // so it was put back where the step began and made static, so it cannot poison other bodies
   // through contacts. Switching it back to dynamic (World::setType) clears the flag.
   bool frozen = false;
+  bool fixed_rotation = false, bullet = false;  // BodyDef
 
-  // Sleeping (World::step, sleep.cpp): a dynamic body whose island has been nearly still for
-  // WorldDef::time_to_sleep stops being simulated until something touches, pushes or edits it.
-  bool awake = true;
+  // State. The centre of mass is what is integrated; the origin transform follows from it.
+  Transform xf;                  // body origin → world
+  Vec2 center = Vec2::Zero();    // world centre of mass [m]
+  double angle = 0.0;            // [rad]
+  Vec2 velocity = Vec2::Zero();  // centre-of-mass velocity [m/s]
+  double angular_velocity = 0.0; // [rad/s]
+
+  // Mass properties, summed over the shapes (parallel-axis theorem). `mass` and `inertia` are
+  // those of the shapes even for a static or kinematic body (so it can be switched back to
+  // dynamic); the inverse values are 0 for those, and inv_inertia for a fixed-rotation body. A
+  // dynamic body without shapes has mass 1 kg and inertia 1 kg·m².
+  double inv_mass = 0.0;
+  double inv_inertia = 0.0;
+  double mass = 0.0;             // kg
+  double inertia = 0.0;          // kg·m², about the centre of mass
+  Vec2 local_center = Vec2::Zero();  // centre of mass in body coordinates
+  double density = 1.0;          // kg/m²: mass / area (the shapes' common density if they share one)
+  double area = 0.0;             // m², of all shapes
+  // Of the shapes that are not sensors (derived): the smallest inner radius and the largest
+  // distance from the origin, which bound what the body can skip in a step and how fast its
+  // points move as it turns (continuous collision detection).
+  double min_inradius = 0.0, max_extent = 0.0;
+
+  double linear_damping = 0.0, angular_damping = 0.0, gravity_scale = 1.0;  // BodyDef
   double sleep_time = 0.0;  // how long it has been below the sleep speeds [s]
+  std::vector<ShapeId> shapes;  // in the order they were added (World::shape)
+  std::string name;
 
   Vec2 position() const { return xf.p; }
   bool isStatic() const { return type == BodyType::Static; }
+  bool isKinematic() const { return type == BodyType::Kinematic; }
+  bool isDynamic() const { return type == BodyType::Dynamic; }
   // Velocity of a world point attached to the body: v + ω × (p − c).
   Vec2 pointVelocity(const Vec2& world_point) const { return velocity + cross(angular_velocity, world_point - center); }
+};
+
+// A shape attached to a body, as the world holds it (World::shape). Change it through World's
+// setters (setShapeMaterial, setShapeFilter, ...).
+struct BodyShape {
+  BodyId body;
+  bool sensor = false;
+  bool default_filter = true;  // derived: `filter` is Filter{} (the narrow phase skips the test)
+  uint32_t chain = 0;      // chain segments: 1-based number of their chain (World::createChain), else 0
+  ShapeId id;
+  Material material;
+  Filter filter;
+  double density = 1.0;    // kg/m²
+  Shape geometry;          // body coordinates
 };
 
 }  // namespace rigidlab

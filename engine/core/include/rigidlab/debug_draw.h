@@ -22,7 +22,9 @@ class DebugDraw {
   virtual void drawSegment(const Vec2& a, const Vec2& b, const Color& color) = 0;
   virtual void drawPoint(const Vec2& p, float size_pixels, const Color& color) = 0;
 
-  // Composite shapes built from segments; an implementation may override them.
+  // Composite shapes built from the primitives above; an implementation may override them.
+  // A capsule: the points within `radius` of the segment a–b (drawn as a 2 × 12-cornered outline).
+  virtual void drawCapsule(const Vec2& a, const Vec2& b, double radius, const Color& fill, const Color& outline);
   virtual void drawSpring(const Vec2& a, const Vec2& b, double width, const Color& color);
   virtual void drawArrow(const Vec2& from, const Vec2& to, const Color& color);
 };

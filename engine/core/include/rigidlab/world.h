@@ -126,6 +126,7 @@ struct WorldDef {
 // sub-steps, restitution included).
 struct ContactInfo {
   BodyId a, b;
+  ShapeId shape_a, shape_b;
   Vec2 normal = Vec2::Zero();  // unit, from a to b
   int count = 0;
   Vec2 points[2] = {Vec2::Zero(), Vec2::Zero()};
@@ -197,7 +198,7 @@ class World {
 
   // --- bodies
   BodyId createBody(const BodyDef& def);  // InputError names the bad field and value
-  void destroyBody(BodyId id);            // also removes the forces attached to it
+  void destroyBody(BodyId id);            // also removes its shapes and the forces attached to it
   bool isValid(BodyId id) const;
   const Body& body(BodyId id) const;      // InputError("body", ...) for a stale handle
   std::vector<BodyId> bodyIds() const;    // live bodies in creation order
@@ -206,16 +207,52 @@ class World {
   std::optional<BodyId> findBody(uint32_t uid) const;
 
   void setTransform(BodyId id, const Vec2& position, double angle);
+  // Static bodies cannot move: a velocity other than zero is refused (InputError "velocity"); a
+  // kinematic body moves by it.
   void setVelocity(BodyId id, const Vec2& velocity);
   void setAngularVelocity(BodyId id, double angular_velocity);
-  void setType(BodyId id, BodyType type);  // static bodies have their velocity zeroed
-  void setMass(BodyId id, double mass);    // keeps the shape; density = mass / area
-  void setMaterial(BodyId id, const Material& material);
+  // Static bodies have their velocity zeroed. A body with a segment or chain shape cannot be dynamic.
+  void setType(BodyId id, BodyType type);
+  void setMass(BodyId id, double mass);    // keeps the shapes and their relative densities
+  void setMaterial(BodyId id, const Material& material);  // of every shape of the body
   void setName(BodyId id, std::string name);
+  void setLinearDamping(BodyId id, double damping);   // [1/s] ≥ 0, BodyDef::linear_damping
+  void setAngularDamping(BodyId id, double damping);  // [1/s] ≥ 0
+  void setGravityScale(BodyId id, double scale);      // finite
+  void setFixedRotation(BodyId id, bool on);          // on also stops its rotation
+  void setBullet(BodyId id, bool on);
+  void setEnabled(BodyId id, bool on);                // BodyDef::enabled
+  // Kinematic bodies: sets the velocity that takes the body from where it is to `position`, `angle`
+  // in `time` [s] > 0 (b2Body_SetTargetTransform): v = Δc / t, ω = Δθ / t, with the centre of mass
+  // moved as the origin moves to `position`. The body keeps that velocity until changed.
+  void setTarget(BodyId id, const Vec2& position, double angle, double time);
   // Instant change of momentum by the impulse J at a world point (origin.md §1, J = Δp).
   void applyImpulse(BodyId id, const Vec2& impulse, const Vec2& world_point);
   // Wakes a sleeping body and the bodies of its island. Every edit above wakes its body too.
   void wake(BodyId id);
+
+  // --- shapes. A body's mass, centre of mass and inertia are the sums over its shapes; adding or
+  // removing a shape recomputes them (the body's origin stays where it is).
+  ShapeId createShape(BodyId body, const ShapeDef& def);  // InputError names the bad field
+  void destroyShape(ShapeId id);
+  bool isValid(ShapeId id) const;
+  const BodyShape& shape(ShapeId id) const;  // InputError("shape", ...) for a stale handle
+  void setShapeMaterial(ShapeId id, const Material& material);
+  void setShapeFilter(ShapeId id, const Filter& filter);
+  void setShapeDensity(ShapeId id, double density);  // recomputes the body's mass
+  void setShapeSensor(ShapeId id, bool sensor);
+  // A chain on a static body (docs/physics.md "Chains"): one chain segment per pair of consecutive
+  // points, each knowing its neighbours so that bodies slide over the joints without catching.
+  // One-sided: the surface faces the right of the direction from a point to the next, so ground
+  // is listed from right to left and a counter-clockwise loop is solid inside. An open chain needs
+  // at least 2 points, a loop 3.
+  struct ChainDef {
+    std::vector<Vec2> points;  // body coordinates
+    bool loop = false;
+    Material material;
+    Filter filter;
+  };
+  std::vector<ShapeId> createChain(BodyId body, const ChainDef& def);
 
   // --- forces. `duration` [s]: the force acts for that much simulated time from now and is removed
   // at the end of the step in which it runs out (origin.md §6); infinity = permanent. A step that
@@ -256,7 +293,7 @@ class World {
   double potentialEnergy() const;
   double gravityPotentialEnergy() const;
 
-  // Topmost body whose shape contains the world point (origin.md §7 point-in-shape), for picking.
+  // Topmost body with a shape that contains the world point (origin.md §7 point-in-shape), for picking.
   std::optional<BodyId> bodyAt(const Vec2& point) const;
   std::vector<ContactInfo> contacts() const;  // manifolds of the last step
   void draw(DebugDraw& dd, const DrawOptions& options = {}) const;

@@ -1,0 +1,386 @@
+// Bodies: creation, removal and the setters that keep derived data (transform, inverse mass,
+// sleep) consistent.
+#include <algorithm>
+#include <cmath>
+
+#include "rigidlab/error.h"
+#include "rigidlab/world.h"
+#include "world_impl.h"
+
+namespace rigidlab {
+namespace {
+
+// Sets the body's transform and centre of mass from its origin and angle. A finite position near
+// the largest double can still put the centre of mass (position + the rotated centre offset) out
+// of range: refused naming position, so that no body starts with a non-finite state (fuzz_world).
+void place(Body& b, const Vec2& position, double angle) {
+  const Transform xf{position, Rot::fromAngle(angle)};
+  const Vec2 center = xf.apply(b.local_center);
+  if (!isFinite(center))
+    throw InputError("position", "position " + formatVec(position) + " puts the centre of mass out of range, at " + formatVec(center));
+  b.angle = angle;
+  b.xf = xf;
+  b.center = center;
+}
+
+bool hasShapeWithoutArea(const WorldImpl& w, const Body& b) {
+  return std::any_of(b.shapes.begin(), b.shapes.end(),
+                     [&](ShapeId s) { return !hasArea(w.shapes[s.index].geometry.type); });
+}
+
+}  // namespace
+
+Body& WorldImpl::get(BodyId id) {
+  if (!isLive(id)) throw InputError("body", "body handle is not valid (the body was removed or never existed)");
+  return bodies[id.index];
+}
+const Body& WorldImpl::get(BodyId id) const { return const_cast<WorldImpl*>(this)->get(id); }
+
+void WorldImpl::requireUnlocked(const char* what) const {
+  if (locked)
+    throw InputError(what, std::string(what) + " is not allowed while the world is stepping (e.g. from inside a force)");
+}
+
+BodyState WorldImpl::stateOf(const Body& b) {
+  BodyState s;
+  s.position = b.xf.p;
+  s.center = b.center;
+  s.angle = b.angle;
+  s.q = b.xf.q;
+  s.velocity = b.velocity;
+  s.angular_velocity = b.angular_velocity;
+  s.mass = b.mass;
+  s.inertia = b.inertia;
+  s.is_static = !b.isDynamic();
+  s.id = b.id;
+  s.uid = b.uid;
+  return s;
+}
+
+const char* bodyTypeName(BodyType t) {
+  switch (t) {
+    case BodyType::Static: return "static";
+    case BodyType::Kinematic: return "kinematic";
+    case BodyType::Dynamic: return "dynamic";
+  }
+  return "?";
+}
+
+BodyId World::createBody(const BodyDef& def) {
+  WorldImpl& w = *impl_;
+  w.requireUnlocked("createBody");
+  // Everything is validated before anything is created, so a refused body leaves nothing behind.
+  const Vec2 position = requireFinite("position", def.position);
+  const double angle = requireFinite("angle", def.angle);
+  const Vec2 velocity = requireFinite("velocity", def.velocity);
+  const double angular_velocity = requireFinite("angular_velocity", def.angular_velocity);
+  if (def.type == BodyType::Static && (velocity != Vec2::Zero() || angular_velocity != 0.0))
+    throw InputError(velocity != Vec2::Zero() ? "velocity" : "angular_velocity",
+                     "a static body cannot move: make it kinematic to give it a velocity");
+  requireNonNegative("linear_damping", def.linear_damping);
+  requireNonNegative("angular_damping", def.angular_damping);
+  requireFinite("gravity_scale", def.gravity_scale);
+  ShapeDef shape_def;
+  if (def.shape) {
+    shape_def.shape = *def.shape;
+    shape_def.material = WorldImpl::validatedMaterial(def.restitution, def.friction, def.static_friction.value_or(def.friction));
+    shape_def.filter = def.filter;
+    shape_def.sensor = def.sensor;
+    if (def.mass) {
+      requirePositive("mass", *def.mass);
+      const Shape geometry = WorldImpl::validatedShape(*def.shape);
+      if (!hasArea(geometry.type)) throw InputError("mass", std::string("a ") + shapeTypeName(geometry.type) + " has no area, so no mass");
+      shape_def.density = *def.mass / computeMass(geometry, 1.0).area;
+      if (!(std::isfinite(shape_def.density) && shape_def.density > 0.0)) {
+        const MassData md = computeMass(geometry, shape_def.density);
+        throw WorldImpl::massError("mass", md.mass, md.inertia, *def.mass);
+      }
+    } else {
+      shape_def.density = requirePositive("density", def.density);
+    }
+  } else if (def.mass) {
+    throw InputError("mass", "a body without shapes has no mass to set (add a shape, then set the mass)");
+  }
+
+  Body b;
+  b.type = def.type;
+  b.name = def.name;
+  b.linear_damping = def.linear_damping;
+  b.angular_damping = def.angular_damping;
+  b.gravity_scale = def.gravity_scale;
+  b.fixed_rotation = def.fixed_rotation;
+  b.bullet = def.bullet;
+  b.enabled = def.enabled;
+  b.awake = def.enabled;
+  w.updateMass(b, "density", 0.0);  // no shapes yet
+  place(b, position, angle);
+
+  uint32_t index;
+  if (!w.free_bodies.empty()) {
+    index = w.free_bodies.back();
+    w.free_bodies.pop_back();
+    b.id = {index, w.bodies[index].id.generation + 1};
+    w.bodies[index] = std::move(b);
+    w.alive[index] = 1;
+  } else {
+    index = static_cast<uint32_t>(w.bodies.size());
+    b.id = {index, 0};
+    w.bodies.push_back(std::move(b));
+    w.alive.push_back(1);
+  }
+  const BodyId id = w.bodies[index].id;
+  if (def.shape) {
+    try {
+      w.attachShape(index, shape_def, def.mass ? "mass" : "density", def.mass.value_or(def.density));
+    } catch (...) {
+      w.alive[index] = 0;  // nothing left behind: the slot goes back to the free list
+      w.bodies[index].shapes.clear();
+      w.free_bodies.push_back(index);
+      throw;
+    }
+  }
+  Body& body = w.bodies[index];
+  body.uid = w.next_uid++;
+  place(body, position, angle);  // the centre of mass moved with the shape
+  if (body.isDynamic() || body.isKinematic()) {
+    body.velocity = velocity;
+    body.angular_velocity = body.fixed_rotation && body.isDynamic() ? 0.0 : angular_velocity;
+  }
+  return id;
+}
+
+void World::destroyBody(BodyId id) {
+  WorldImpl& w = *impl_;
+  w.requireUnlocked("destroyBody");
+  w.get(id);
+  for (uint32_t i = 0; i < w.forces.size(); ++i) {
+    const ForceEntry& f = w.forces[i];
+    if (f.alive && (f.a == id || f.b == id)) removeForce({i, f.generation});
+  }
+  for (const Contact& c : w.contacts) {  // what rested on it may now fall
+    if (c.a == id.index) w.wakeIsland(c.b);
+    if (c.b == id.index) w.wakeIsland(c.a);
+  }
+  Body& b = w.bodies[id.index];
+  for (ShapeId s : b.shapes) w.releaseShape(s.index);
+  const BodyId old = b.id;
+  b = Body{};
+  b.id = old;  // keeps the generation, so the next body in this slot gets a new one
+  b.uid = 0;
+  w.alive[id.index] = 0;
+  w.free_bodies.push_back(id.index);
+  // Drop contacts (and their keys, which stay index for index with them) that refer to the slot,
+  // so contacts() never names a dead body.
+  const auto refersToSlot = [&](const auto& c) { return c.a == id.index || c.b == id.index; };
+  std::erase_if(w.contacts, refersToSlot);
+  std::erase_if(w.previous_contacts, refersToSlot);
+  std::erase_if(w.contact_keys, refersToSlot);
+}
+
+bool World::isValid(BodyId id) const { return impl_->isLive(id); }
+const Body& World::body(BodyId id) const { return impl_->get(id); }
+
+std::vector<BodyId> World::bodyIds() const {
+  std::vector<BodyId> ids;
+  for (size_t i = 0; i < impl_->bodies.size(); ++i)
+    if (impl_->alive[i]) ids.push_back(impl_->bodies[i].id);
+  return ids;
+}
+
+int World::bodyCount() const { return static_cast<int>(std::count(impl_->alive.begin(), impl_->alive.end(), 1)); }
+
+std::optional<BodyId> World::findBody(std::string_view name) const {
+  for (size_t i = 0; i < impl_->bodies.size(); ++i)
+    if (impl_->alive[i] && impl_->bodies[i].name == name) return impl_->bodies[i].id;
+  return std::nullopt;
+}
+
+std::optional<BodyId> World::findBody(uint32_t uid) const {
+  for (size_t i = 0; i < impl_->bodies.size(); ++i)
+    if (impl_->alive[i] && impl_->bodies[i].uid == uid) return impl_->bodies[i].id;
+  return std::nullopt;
+}
+
+void World::setTransform(BodyId id, const Vec2& position, double angle) {
+  impl_->requireUnlocked("setTransform");
+  Body& b = impl_->get(id);
+  impl_->wakeIsland(id.index);
+  requireFinite("position", position);
+  requireFinite("angle", angle);
+  place(b, position, angle);
+}
+
+void World::setVelocity(BodyId id, const Vec2& velocity) {
+  impl_->requireUnlocked("setVelocity");
+  Body& b = impl_->get(id);
+  impl_->wakeIsland(id.index);
+  requireFinite("velocity", velocity);
+  if (b.isStatic()) {
+    if (velocity != Vec2::Zero())
+      throw InputError("velocity", "a static body cannot move: make it kinematic to give it a velocity");
+    return;
+  }
+  b.velocity = velocity;
+}
+
+void World::setAngularVelocity(BodyId id, double angular_velocity) {
+  impl_->requireUnlocked("setAngularVelocity");
+  Body& b = impl_->get(id);
+  impl_->wakeIsland(id.index);
+  requireFinite("angular_velocity", angular_velocity);
+  if (b.isStatic()) {
+    if (angular_velocity != 0.0)
+      throw InputError("angular_velocity", "a static body cannot turn: make it kinematic to give it an angular velocity");
+    return;
+  }
+  if (b.fixed_rotation && b.isDynamic()) return;  // never turns
+  b.angular_velocity = angular_velocity;
+}
+
+void World::setType(BodyId id, BodyType type) {
+  WorldImpl& w = *impl_;
+  w.requireUnlocked("setType");
+  Body& b = w.get(id);
+  if (type == BodyType::Dynamic && hasShapeWithoutArea(w, b))
+    throw InputError("type", "a body with a segment or chain shape cannot be dynamic: segments have no area (use a capsule or a thin box)");
+  w.wakeIsland(id.index);
+  b.type = type;
+  if (type == BodyType::Dynamic) b.frozen = false;
+  if (b.isStatic()) {
+    b.velocity = Vec2::Zero();
+    b.angular_velocity = 0.0;
+  }
+  w.updateMass(b, "density", b.density);  // valid when the shapes were made
+}
+
+void World::setMass(BodyId id, double mass) {
+  WorldImpl& w = *impl_;
+  w.requireUnlocked("setMass");
+  Body& b = w.get(id);
+  w.wakeIsland(id.index);
+  requirePositive("mass", mass);
+  if (!(b.area > 0.0)) throw InputError("mass", "the body has no shape with an area, so no mass to set");
+  // Every shape's density scaled by the same factor, so their proportions stay. One shape: its
+  // density is mass / area, as given.
+  std::vector<double> old;
+  for (ShapeId s : b.shapes) old.push_back(w.shapes[s.index].density);
+  const double factor = mass / b.mass;
+  for (ShapeId s : b.shapes) {
+    BodyShape& shape = w.shapes[s.index];
+    shape.density = b.shapes.size() == 1 ? mass / b.area : shape.density * factor;
+  }
+  try {
+    w.updateMass(b, "mass", mass);
+  } catch (...) {
+    for (size_t i = 0; i < b.shapes.size(); ++i) w.shapes[b.shapes[i].index].density = old[i];
+    throw;
+  }
+}
+
+void World::setMaterial(BodyId id, const Material& m) {
+  impl_->requireUnlocked("setMaterial");
+  const Body& b = impl_->get(id);
+  const Material checked = WorldImpl::validatedMaterial(m.restitution, m.friction, m.static_friction);
+  for (ShapeId s : b.shapes) impl_->shapes[s.index].material = checked;
+}
+
+void World::setName(BodyId id, std::string name) {
+  impl_->requireUnlocked("setName");
+  impl_->get(id).name = std::move(name);
+}
+
+void World::setLinearDamping(BodyId id, double damping) {
+  impl_->requireUnlocked("setLinearDamping");
+  Body& b = impl_->get(id);
+  b.linear_damping = requireNonNegative("linear_damping", damping);
+  impl_->wakeIsland(id.index);
+}
+
+void World::setAngularDamping(BodyId id, double damping) {
+  impl_->requireUnlocked("setAngularDamping");
+  Body& b = impl_->get(id);
+  b.angular_damping = requireNonNegative("angular_damping", damping);
+  impl_->wakeIsland(id.index);
+}
+
+void World::setGravityScale(BodyId id, double scale) {
+  impl_->requireUnlocked("setGravityScale");
+  Body& b = impl_->get(id);
+  b.gravity_scale = requireFinite("gravity_scale", scale);
+  impl_->wakeIsland(id.index);
+}
+
+void World::setFixedRotation(BodyId id, bool on) {
+  WorldImpl& w = *impl_;
+  w.requireUnlocked("setFixedRotation");
+  Body& b = w.get(id);
+  b.fixed_rotation = on;
+  if (on && b.isDynamic()) b.angular_velocity = 0.0;
+  w.updateMass(b, "density", b.density);
+  w.wakeIsland(id.index);
+}
+
+void World::setBullet(BodyId id, bool on) {
+  impl_->requireUnlocked("setBullet");
+  impl_->get(id).bullet = on;
+}
+
+void World::setEnabled(BodyId id, bool on) {
+  WorldImpl& w = *impl_;
+  w.requireUnlocked("setEnabled");
+  Body& b = w.get(id);
+  if (b.enabled == on) return;
+  w.wakeIsland(id.index);
+  b.enabled = on;
+  b.awake = on;  // a disabled body is never awake (WorldImpl::isActive)
+  b.sleep_time = 0.0;
+  if (!on) {  // what rested on it may now fall; its contacts go
+    for (const Contact& c : w.contacts) {
+      if (c.a == id.index) w.wakeIsland(c.b);
+      if (c.b == id.index) w.wakeIsland(c.a);
+    }
+    const auto refersToSlot = [&](const auto& c) { return c.a == id.index || c.b == id.index; };
+    std::erase_if(w.contacts, refersToSlot);
+    std::erase_if(w.previous_contacts, refersToSlot);
+    std::erase_if(w.contact_keys, refersToSlot);
+  }
+}
+
+void World::setTarget(BodyId id, const Vec2& position, double angle, double time) {
+  impl_->requireUnlocked("setTarget");
+  Body& b = impl_->get(id);
+  requireFinite("position", position);
+  requireFinite("angle", angle);
+  requirePositive("time", time);
+  if (!b.isKinematic())
+    throw InputError("body", std::string("set_target moves kinematic bodies; this body is ") + bodyTypeName(b.type));
+  // The centre of mass where the origin will be at the target: c = p + q(θ) c_local.
+  const Vec2 target_center = position + Rot::fromAngle(angle).apply(b.local_center);
+  const Vec2 v = (target_center - b.center) / time;
+  const double w = (angle - b.angle) / time;
+  if (!isFinite(v) || !std::isfinite(w)) throw InputError("time", "time " + formatNumber(time) + " gives a velocity out of range");
+  b.velocity = v;
+  b.angular_velocity = w;
+  impl_->wakeIsland(id.index);
+}
+
+void World::applyImpulse(BodyId id, const Vec2& impulse, const Vec2& world_point) {
+  impl_->requireUnlocked("applyImpulse");
+  Body& b = impl_->get(id);
+  impl_->wakeIsland(id.index);
+  requireFinite("impulse", impulse);
+  requireFinite("point", world_point);
+  // Δv = J / m, Δω = (p − c) × J / I.
+  b.velocity += b.inv_mass * impulse;
+  b.angular_velocity += b.inv_inertia * cross(world_point - b.center, impulse);
+}
+
+void World::wake(BodyId id) {
+  WorldImpl& w = *impl_;
+  w.get(id);
+  w.wakeIsland(id.index);
+}
+
+BodyState World::bodyState(BodyId id) const { return WorldImpl::stateOf(impl_->get(id)); }
+
+}  // namespace rigidlab
