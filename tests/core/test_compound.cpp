@@ -193,3 +193,101 @@ TEST_CASE("concave outline: split into convex pieces with the same area; a self-
   const std::vector<Vec2> bow = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};
   CHECK(test::errorOf([&] { decomposeConcave(bow); }) == "outline crosses itself: edge 1 meets edge 3");
 }
+
+TEST_CASE("kinematic bodies: move by their velocity, push dynamic bodies, carry them by friction, are not pushed") {
+  World w;
+  BodyDef pd;
+  pd.type = BodyType::Kinematic;
+  pd.shape = makeBox(4, 0.5);
+  pd.position = {0, 0};
+  pd.velocity = {1.0, 0.0};
+  const BodyId platform = w.createBody(pd);
+  BodyDef bd;
+  bd.shape = makeBox(0.5, 0.5);
+  bd.position = {0, 0.5};
+  bd.friction = 1.0;
+  const BodyId box = w.createBody(bd);
+  for (int i = 0; i < 60; ++i) w.step(1.0 / 60.0);  // the box slips until friction has it at 1 m/s
+  const double offset = w.body(box).position().x() - w.body(platform).position().x();
+  for (int i = 0; i < 60; ++i) w.step(1.0 / 60.0);
+  CHECK(w.body(platform).position().x() == Approx(2.0).epsilon(1e-12));  // exactly v t: not pushed, no gravity
+  CHECK(w.body(platform).position().y() == 0.0);
+  CHECK(std::abs(w.body(box).position().x() - w.body(platform).position().x() - offset) < 0.01);  // carried along
+  CHECK(w.body(box).velocity.x() == Approx(1.0).epsilon(0.01));
+  CHECK(w.body(platform).mass > 0.0);
+  CHECK(w.body(platform).inv_mass == 0.0);
+}
+
+TEST_CASE("kinematic bodies push dynamic bodies in their way, in both contact solvers") {
+  for (ContactSolver solver : {ContactSolver::SequentialImpulses, ContactSolver::SoftStep}) {
+    WorldDef def;
+    def.gravity = Vec2::Zero();
+    def.contact_solver = solver;
+    World w(def);
+    BodyDef k;
+    k.type = BodyType::Kinematic;
+    k.shape = makeBox(1, 1);
+    k.velocity = {2, 0};
+    const BodyId pusher = w.createBody(k);
+    const BodyId box = test::addBox(w, 1, 1, {2, 0});
+    for (int i = 0; i < 120; ++i) w.step(1.0 / 60.0);
+    CHECK(w.body(pusher).position().x() == Approx(4.0).epsilon(1e-12));
+    CHECK(w.body(box).position().x() >= 4.0 + 1.0 - 0.02);
+    CHECK(w.body(box).velocity.x() >= 2.0 - 1e-6);
+  }
+}
+
+TEST_CASE("kinematic set_target reaches the pose in the given time; static bodies refuse velocities") {
+  World w;
+  BodyDef d;
+  d.type = BodyType::Kinematic;
+  d.shape = makeBox(1, 1, {0.5, 0});  // the centre of mass off the origin
+  const BodyId k = w.createBody(d);
+  w.setTarget(k, {3, 1}, 0.5, 1.0);
+  for (int i = 0; i < 60; ++i) w.step(1.0 / 60.0);
+  CHECK(w.body(k).position().x() == Approx(3.0).epsilon(1e-12));
+  CHECK(w.body(k).position().y() == Approx(1.0).epsilon(1e-12));
+  CHECK(w.body(k).angle == Approx(0.5).epsilon(1e-12));
+  const BodyId s = test::addBox(w, 1, 1, {5, 5}, true);
+  CHECK(test::errorOf([&] { w.setVelocity(s, {1, 0}); }) ==
+        "a static body cannot move: make it kinematic to give it a velocity");
+  w.setVelocity(s, {0, 0});  // zero is fine
+  CHECK(test::errorOf([&] { w.setTarget(s, {0, 0}, 0, 1); }) == "set_target moves kinematic bodies; this body is static");
+}
+
+TEST_CASE("body properties: gravity scale, damping that never flips, fixed rotation, disabled bodies") {
+  World w;
+  BodyDef d;
+  d.shape = makeCircle(0.5);
+  d.gravity_scale = 0.5;
+  const BodyId half = w.createBody(d);
+  d.gravity_scale = 1.0;
+  d.position = {10, 0};
+  d.linear_damping = 1e6;  // h c = 1.7e4: v shrinks, never flips
+  d.velocity = {5, 0};
+  const BodyId damped = w.createBody(d);
+  d.linear_damping = 0.0;
+  d.position = {20, 0};
+  d.velocity = {0, 0};
+  d.shape = makeBox(1, 1);
+  d.fixed_rotation = true;
+  d.angular_velocity = 3.0;
+  const BodyId fixed = w.createBody(d);
+  CHECK(w.body(fixed).angular_velocity == 0.0);
+  w.applyImpulse(fixed, {0, 1}, w.body(fixed).center + Vec2(0.5, 0));
+  d.fixed_rotation = false;
+  d.angular_velocity = 0.0;
+  d.position = {30, 0};
+  d.enabled = false;
+  const BodyId off = w.createBody(d);
+  for (int i = 0; i < 60; ++i) w.step(1.0 / 60.0);
+  CHECK(w.body(half).position().y() == Approx(-0.25 * 9.80665).epsilon(1e-9));
+  CHECK(w.body(damped).velocity.x() >= 0.0);
+  CHECK(w.body(damped).velocity.x() < 1e-6);
+  CHECK(w.body(fixed).angle == 0.0);
+  CHECK(w.body(fixed).angular_velocity == 0.0);
+  CHECK(w.body(off).position().y() == 0.0);  // out of the simulation
+  w.setEnabled(off, true);
+  for (int i = 0; i < 60; ++i) w.step(1.0 / 60.0);
+  CHECK(w.body(off).position().y() == Approx(-0.5 * 9.80665).epsilon(1e-9));  // falls from where it was
+}

@@ -374,6 +374,8 @@ void solveContacts(WorldImpl& w) {
     const Body& b = w.bodies[i];
     if (w.isActive(static_cast<uint32_t>(i))) {
       bodies[i] = {b.velocity.x(), b.velocity.y(), b.angular_velocity, b.inv_mass, b.inv_inertia};
+    } else if (w.isMovingKinematic(static_cast<uint32_t>(i))) {
+      bodies[i] = {b.velocity.x(), b.velocity.y(), b.angular_velocity, 0.0, 0.0};  // moves, but no impulse moves it
     } else {
       bodies[i] = {0.0, 0.0, 0.0, 0.0, 0.0};  // static or asleep: immovable
     }

@@ -65,7 +65,7 @@ struct Accel {
 };
 Accel accelerationOf(const WorldImpl& w, uint32_t i, const Wrench& wr) {
   const Body& b = w.bodies[i];
-  return {wr.force * b.inv_mass + w.def.gravity, wr.torque * b.inv_inertia};
+  return {wr.force * b.inv_mass + w.def.gravity * b.gravity_scale, wr.torque * b.inv_inertia};
 }
 
 void setStageState(WorldImpl& w, uint32_t i, const Vec2& c, double angle, const Vec2& v, double omega) {
@@ -155,7 +155,7 @@ void integrateInterval(WorldImpl& w, double t0, double h) {
         if (implicit) {
           const int r = w.implicit.row[i];
           dv = Vec2(w.implicit.dv[3 * r], w.implicit.dv[3 * r + 1]);
-          dw = w.implicit.dv[3 * r + 2];
+          dw = b.fixed_rotation ? 0.0 : w.implicit.dv[3 * r + 2];  // the solve treats the angle as free
         } else {
           const Accel acc = accelerationOf(w, i, w.wrenches[i]);
           dv = h * acc.a;
@@ -236,8 +236,16 @@ void integrateInterval(WorldImpl& w, double t0, double h) {
       break;
     }
   }
-  for (uint32_t i = 0; i < n; ++i)
-    if (isMoving(w, i)) WorldImpl::syncTransform(w.bodies[i]);
+  // Body damping (BodyDef::linear_damping, angular_damping), implicit over the interval:
+  //   v ← v / (1 + h c)
+  // which shrinks a velocity towards zero for any h c ≥ 0 and never flips it.
+  for (uint32_t i = 0; i < n; ++i) {
+    if (!isMoving(w, i)) continue;
+    Body& b = w.bodies[i];
+    if (b.linear_damping > 0.0) b.velocity *= 1.0 / (1.0 + h * b.linear_damping);
+    if (b.angular_damping > 0.0) b.angular_velocity *= 1.0 / (1.0 + h * b.angular_damping);
+    WorldImpl::syncTransform(b);
+  }
 }
 
 }  // namespace
@@ -277,6 +285,14 @@ void integrate(WorldImpl& w, double dt) {
     t = stop;
   }
   integrateInterval(w, t, dt - done);
+  // Kinematic bodies move by their velocity alone: exact for a constant velocity.
+  for (size_t k = 0; k < n; ++k) {
+    Body& b = w.bodies[k];
+    if (!w.alive[k] || !b.isKinematic() || !b.enabled || (b.velocity == Vec2::Zero() && b.angular_velocity == 0.0)) continue;
+    b.center += dt * b.velocity;
+    b.angle += dt * b.angular_velocity;
+    WorldImpl::syncTransform(b);
+  }
 }
 
 }  // namespace rigidlab

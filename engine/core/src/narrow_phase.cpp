@@ -56,7 +56,7 @@ void narrowPhase(WorldImpl& w) {
     }
     const Body& a = w.bodies[ia];
     const Body& b = w.bodies[ib];
-    if (!w.isActive(ia) && !w.isActive(ib)) {
+    if (!w.isActive(ia) && !w.isActive(ib) && !w.isMovingKinematic(ia) && !w.isMovingKinematic(ib)) {
       // Both asleep (or one static): nothing moved, so the contact is as it was; keep it with its
       // impulses for when the island wakes.
       if (had) {

@@ -61,8 +61,10 @@ void updateSleep(WorldImpl& w) {
     if (!f.b.isNull()) w.keep_awake[f.b.index] = 1;
   }
   const double v2 = w.def.sleep_linear_speed * w.def.sleep_linear_speed;
+  bool kinematic = false;  // some kinematic body moves: what it touches stays awake
   for (uint32_t i = 0; i < n; ++i) {
     Body& b = w.bodies[i];
+    kinematic |= w.isMovingKinematic(i);
     if (!w.isActive(i)) continue;
     const bool still = b.velocity.squaredNorm() <= v2 && std::abs(b.angular_velocity) <= w.def.sleep_angular_speed;
     b.sleep_time = still && !w.keep_awake[i] ? b.sleep_time + dt : 0.0;
@@ -72,14 +74,15 @@ void updateSleep(WorldImpl& w) {
   // freeze the overlap (boxes spawned half inside each other slept with 4.9 cm left; stability
   // case deep_overlap).
   // The same walk over the contacts (their keys, contact.h ContactKey: deeper than slop +
-  // kDeepOverlapMargin) links their bodies into islands.
+  // kDeepOverlapMargin) links their bodies into islands. A body carried or pushed by a moving
+  // kinematic body is not at rest either.
   w.island_parent.resize(n);
   for (uint32_t i = 0; i < n; ++i) w.island_parent[i] = i;
   w.island_dynamic.resize(n);
   for (uint32_t i = 0; i < n; ++i) w.island_dynamic[i] = w.alive[i] && w.bodies[i].isDynamic() && w.bodies[i].enabled;
   for (const ContactKey& c : w.contact_keys) {
     link(w, c.a, c.b);
-    if (!c.deep_overlap) continue;
+    if (!c.deep_overlap && !(kinematic && (w.isMovingKinematic(c.a) || w.isMovingKinematic(c.b)))) continue;
     w.bodies[c.a].sleep_time = 0.0;
     w.bodies[c.b].sleep_time = 0.0;
   }

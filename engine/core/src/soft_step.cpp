@@ -287,6 +287,7 @@ inline V vmin(V a, V b) { return b < a ? b : a; }  // std::min
 
 struct WideBody {
   V vx, vy, w, dx, dy, qc, qs, im, ii;
+  M still;  // cannot move and does not move (static, asleep): several lanes may share it
 };
 
 // Four rows of four doubles to four columns (a 4×4 transpose): unpacks and lane swaps, which for
@@ -313,16 +314,21 @@ static_assert(sizeof(SoftBody) == 9 * sizeof(double), "gather reads a SoftBody a
   transpose(row(b0, 0), row(b1, 0), row(b2, 0), row(b3, 0), v.vx, v.vy, v.w, v.dx);  // vx vy w dx
   transpose(row(b0, 4), row(b1, 4), row(b2, 4), row(b3, 4), v.dy, v.qc, v.qs, v.im);  // dy qc qs im
   v.ii = V{b0.ii, b1.ii, b2.ii, b3.ii};
+  // A kinematic body cannot be moved by impulses but moves (its velocity is not zero): like a
+  // dynamic body it is in one lane of a colour at most, and its velocity is written back.
+  const V zero = splat(0.0);
+  v.still = (v.im == zero) & (v.ii == zero) & (v.vx == zero) & (v.vy == zero) & (v.w == zero);
   return v;
 }
 
 // Writes the velocities back as whole rows of four doubles (vx vy w dx), so that the next gather
 // of the same body reads what one store wrote (three scalar stores followed by a 32-byte load
-// cannot be forwarded and stall). Bodies that cannot move, which several lanes may share, keep
-// velocity zero (their impulses change nothing unless they are not finite).
+// cannot be forwarded and stall). Still bodies, which several lanes may share, keep velocity zero
+// (their impulses change nothing unless they are not finite); kinematic ones keep theirs (an
+// impulse times their zero inverse mass changes nothing either).
 [[gnu::always_inline]] inline void scatter(std::vector<SoftBody>& bodies, const uint32_t index[L], const WideBody& v) {
   const V zero = splat(0.0);
-  const M still = (v.im == zero) & (v.ii == zero);
+  const M still = v.still;
   V r[4];
   transpose(still ? zero : v.vx, still ? zero : v.vy, still ? zero : v.w, v.dx, r[0], r[1], r[2], r[3]);
   for (int l = 0; l < L; ++l) store(&bodies[index[l]].vx, r[l]);
@@ -696,8 +702,9 @@ void softStep(WorldImpl& w) {
   warm.assign(n + 1, SoftKick{0.0, 0.0, 0.0, 0.0});
   moved.assign(n, 0);
   for (const SolvedRef& r : w.soft_refs) {
-    if (r.active & 1) moved[r.a] = 1;
-    if (r.active & 2) moved[r.b] = 1;
+    // Awake dynamic bodies, and kinematic ones that move: both are sub-stepped.
+    if (r.active & 1 || w.isMovingKinematic(r.a)) moved[r.a] = 1;
+    if (r.active & 2 || w.isMovingKinematic(r.b)) moved[r.b] = 1;
   }
   list.clear();
   for (uint32_t i = 0; i < n; ++i) {
@@ -883,7 +890,7 @@ void softStep(WorldImpl& w) {
     if (moved[sc.b[l]]) moved[sc.b[l]] = 2;
   }
   for (uint32_t i : list) {
-    if (moved[i] != 2) continue;
+    if (moved[i] != 2 || !w.bodies[i].isDynamic()) continue;  // kinematic bodies keep the integrator's
     Body& b = w.bodies[i];
     const SoftBody& s = bodies[i];
     b.center += Vec2(s.dx, s.dy);

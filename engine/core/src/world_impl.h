@@ -153,6 +153,11 @@ struct WorldImpl {
   void wakeIsland(uint32_t slot);
   // Dynamic and awake (a disabled body is never awake): integrated, solved.
   bool isActive(uint32_t slot) const { return alive[slot] && bodies[slot].isDynamic() && bodies[slot].awake; }
+  // A kinematic body that moves this step: it pushes and carries what it touches.
+  bool isMovingKinematic(uint32_t slot) const {
+    const Body& b = bodies[slot];
+    return alive[slot] && b.isKinematic() && b.enabled && (b.velocity != Vec2::Zero() || b.angular_velocity != 0.0);
+  }
 
   bool isLive(BodyId id) const {
     return id.index < bodies.size() && alive[id.index] && bodies[id.index].id.generation == id.generation;
