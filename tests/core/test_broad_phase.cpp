@@ -188,8 +188,8 @@ TEST_CASE("a step over the pair cap fails, naming the crowd, and leaves the worl
   w.setVelocity(heap[5], {1, 2});
   const std::string message = test::errorOf([&] { w.step(1.0 / 60.0); });
   CHECK(message == "too many bodies on top of each other at step 1 (t = 0 s): 100 bodies overlap around (0, "
-                   "-0.001362), more than the 1000 candidate contact pairs a step may have (max(1000, 2 per body) for "
-                   "101 bodies); spread them out");
+                   "-0.001362), more than the 1000 candidate contact pairs a step may have (min(1000000, max(1000, 2 per "
+                   "body)) for 101 bodies); spread them out");
   CHECK(w.time() == 0.0);
   CHECK(w.stepCount() == 0);
   CHECK_FALSE(w.isStepping());
@@ -210,9 +210,29 @@ TEST_CASE("a kept pair list over the cap falls back to a plain pass: the step su
   WorldDef def;
   def.pair_cap = 1;
   def.pair_cap_per_body = 1;
+  def.pair_cap_max = 1000;
   def.gravity = Vec2::Zero();
   World w(def);
   for (int i = 0; i < 50; ++i) test::addBox(w, 1.0, 1.0, {1.1 * i, 0});
   CHECK(test::errorOf([&] { w.step(1.0 / 60.0); }) == "(no error)");
   CHECK(w.stats().pairs == 0);
+}
+
+TEST_CASE("the pair cap stops growing with the number of bodies at pair_cap_max") {
+  WorldDef def;
+  def.pair_cap = 10;
+  def.pair_cap_per_body = 32;
+  def.pair_cap_max = 500;
+  World w(def);
+  // 40 clusters of 5 coincident circles: 400 pairs, under 32 per body but over the ceiling of 500
+  // once a cluster more is added.
+  for (int c = 0; c < 40; ++c)
+    for (int i = 0; i < 5; ++i) test::addCircle(w, 0.5, {3.0 * c, 0.001 * i});
+  CHECK(test::errorOf([&] { w.step(1.0 / 60.0); }) == "(no error)");
+  CHECK(w.stats().pairs == 400);
+  for (int c = 40; c < 70; ++c)
+    for (int i = 0; i < 5; ++i) test::addCircle(w, 0.5, {3.0 * c, 0.001 * i});
+  CHECK(test::errorOf([&] { w.step(1.0 / 60.0); }).find("more than the 500 candidate contact pairs") != std::string::npos);
+  def.pair_cap_max = 5;
+  CHECK(test::errorOf([&] { World bad(def); }) == "pair_cap_max must be at least pair_cap (10), got 5");
 }

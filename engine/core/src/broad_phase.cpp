@@ -125,8 +125,8 @@ bool findPairsCached(WorldImpl& w, const PairLimit& limit, PairOverflow& overflo
 constexpr size_t kTestsPerPair = 64;
 
 std::string overflowMessage(const WorldImpl& w, const PairOverflow& o, size_t bodies, const PairLimit& limit) {
-  const std::string rule = "max(" + std::to_string(w.def.pair_cap) + ", " + std::to_string(w.def.pair_cap_per_body) +
-                           " per body) for " + std::to_string(bodies) + " bodies";
+  const std::string rule = "min(" + std::to_string(w.def.pair_cap_max) + ", max(" + std::to_string(w.def.pair_cap) + ", " +
+                           std::to_string(w.def.pair_cap_per_body) + " per body)) for " + std::to_string(bodies) + " bodies";
   const std::string at = " at step " + std::to_string(w.step_count + 1) + " (t = " + formatNumber(w.clock.t) + " s): ";
   char where[64];
   std::snprintf(where, sizeof where, "(%.4g, %.4g)", o.where.x(), o.where.y());
@@ -188,7 +188,7 @@ void findPairs(WorldImpl& w) {
     p.aabb.upper += half_margin;
   }
   PairLimit limit;
-  limit.pairs = std::max(w.def.pair_cap, static_cast<size_t>(w.def.pair_cap_per_body) * bodies);
+  limit.pairs = std::min(w.def.pair_cap_max, std::max(w.def.pair_cap, static_cast<size_t>(w.def.pair_cap_per_body) * bodies));
   limit.tests = limit.pairs > SIZE_MAX / kTestsPerPair ? SIZE_MAX : kTestsPerPair * limit.pairs;
   PairOverflow overflow;
   if (!findPairsCached(w, limit, overflow)) {

@@ -164,8 +164,12 @@ World::World(const WorldDef& def) : impl_(std::make_unique<WorldImpl>()) {
   if (def.pair_cap < 1) throw InputError("pair_cap", "pair_cap must be at least 1, got 0");
   if (def.pair_cap_per_body < 1)
     throw InputError("pair_cap_per_body", "pair_cap_per_body must be at least 1, got " + std::to_string(def.pair_cap_per_body));
+  if (def.pair_cap_max < def.pair_cap)
+    throw InputError("pair_cap_max", "pair_cap_max must be at least pair_cap (" + std::to_string(def.pair_cap) + "), got " +
+                                         std::to_string(def.pair_cap_max));
   impl_->def.pair_cap = def.pair_cap;
   impl_->def.pair_cap_per_body = def.pair_cap_per_body;
+  impl_->def.pair_cap_max = def.pair_cap_max;
   impl_->def.sleep_linear_speed = requireNonNegative("sleep_linear_speed", def.sleep_linear_speed);
   impl_->def.sleep_angular_speed = requireNonNegative("sleep_angular_speed", def.sleep_angular_speed);
   impl_->def.time_to_sleep = requireNonNegative("time_to_sleep", def.time_to_sleep);
