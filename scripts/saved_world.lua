@@ -7,18 +7,29 @@
 --   end
 --
 -- data = {
---   version = 1,
---   bodies = { {shape = "circle", radius = r, ...} or {shape = "polygon", vertices = {{x, y}, ...}, ...} },
---     -- common body fields: position, angle, velocity, angular_velocity, mass, restitution,
---     -- friction, static_friction, static, name (as world:add_circle / world:add_polygon take them)
+--   version = 2,
+--   bodies = { {"circle", r, x, y, angle, vx, vy, w, mass, restitution, friction, static_friction,
+--               static [, name]} or {"polygon", {{x, y}, ...}, x, y, ...} },  -- one row per body
 --   springs = { {a = i, b = j or anchor = {x, y}, local_a, local_b, stiffness, rest_length, damping} },
 --   dampers = { {body = i, coefficient = c, angular_coefficient = c_w} },
 -- }
--- Springs and dampers name their bodies by index in data.bodies.
+-- Springs and dampers name their bodies by index in data.bodies. Version 1 files (rigidlab before
+-- the rows) name every body field: {shape = "circle", radius = r, position = {x, y}, angle = a, ...}.
 
 local saved_world = {}
 
-local SUPPORTED_VERSION = 1
+local SUPPORTED_VERSIONS = {[1] = true, [2] = true}
+
+-- A version 2 row as the named fields of version 1.
+local function row_fields(row)
+  local fields = {
+    position = {row[3], row[4]}, angle = row[5], velocity = {row[6], row[7]}, angular_velocity = row[8],
+    mass = row[9], restitution = row[10], friction = row[11], static_friction = row[12], static = row[13],
+    name = row[14], shape = row[1],
+  }
+  if row[1] == "circle" then fields.radius = row[2] else fields.vertices = row[2] end
+  return fields
+end
 
 local function body_args(b, index)
   local args = {
@@ -41,13 +52,14 @@ end
 
 function saved_world.populate(world, data)
   if type(data) ~= "table" then error("saved_world.populate: data must be a table", 2) end
-  if data.version ~= SUPPORTED_VERSION then
-    error(string.format("saved_world: data.version %s is not supported (this rigidlab reads %d)",
-                        tostring(data.version), SUPPORTED_VERSION), 2)
+  if not SUPPORTED_VERSIONS[data.version] then
+    error(string.format("saved_world: data.version %s is not supported (this rigidlab reads 1 and 2)",
+                        tostring(data.version)), 2)
   end
 
   local bodies = {}
   for i, b in ipairs(data.bodies or {}) do  -- ipairs: creation order is part of the state
+    if data.version == 2 then b = row_fields(b) end
     local args = body_args(b, i)
     if b.shape == "circle" then
       bodies[i] = world:add_circle(args)

@@ -39,5 +39,8 @@ class Args {
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitSceneError = 1;  // scene error, failed Check, failed gate
 inline constexpr int kExitUsage = 2;
+// rigidlab run: the run finished and Check passed (or there is none), but it blew up: the NaN
+// firewall froze a body, or the energy became non-finite (unless scene.expect_incidents).
+inline constexpr int kExitIncidents = 3;
 
 }  // namespace rigidlab::app

@@ -32,7 +32,8 @@ usage:
                            stiff and extreme cases: where the simulation stays stable
   rigidlab help            this text; `rigidlab COMMAND --help` for a command's options
 
-Exit status: 0 success, 1 scene error or failed check, 2 usage error.
+Exit status: 0 success, 1 scene error or failed check, 2 usage error, 3 a run that blew up
+(`rigidlab run --help`).
 )";
 
 std::string defaultScene() { return (lua::scriptsDirectory() / "scenes" / "playground.lua").string(); }

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "rigidlab/error.h"
+#include "rigidlab/lua/scene_text.h"
 
 namespace rigidlab::app {
 
@@ -16,7 +17,9 @@ std::string jsonNumber(double x) {
   return buf;
 }
 
-std::string jsonString(const std::string& s) {
+std::string jsonString(const std::string& text) {
+  // JSON text is UTF-8: bytes that are not (a body name is any bytes) become U+FFFD.
+  const std::string s = lua::validUtf8(text);
   std::string out = "\"";
   for (unsigned char c : s) {
     switch (c) {
@@ -49,13 +52,32 @@ std::string fixed(double x, int decimals = 4) {
 
 std::string vec(const Vec2& v) { return "(" + fixed(v.x()) + ", " + fixed(v.y()) + ")"; }
 
+// A scene's string in a column of about `width` bytes: escaped, cut between characters.
+std::string column(const std::string& text, size_t width) {
+  std::string shown = lua::displayText(text, width);
+  if (const size_t cut = shown.find("... ("); cut != std::string::npos) shown = shown.substr(0, cut) + "...";
+  return shown;
+}
+
 }  // namespace
+
+std::vector<std::string> incidents(const World& world, const RunInfo& info) {
+  std::vector<std::string> list;
+  for (const Incident& incident : world.incidents()) list.push_back(incident.message());
+  if (info.energy_blowup_step > 0)
+    list.push_back("the energy became non-finite at step " + std::to_string(info.energy_blowup_step) + " (t = " +
+                   formatNumber(info.energy_blowup_time) + " s): kinetic " + formatNumber(info.blowup_kinetic) +
+                   " J, potential " + formatNumber(info.blowup_potential) + " J");
+  return list;
+}
 
 void printSummary(std::FILE* out, const lua::Scene& scene, const RunInfo& info) {
   const World& w = scene.world();
   const WorldDef& def = w.settings();
-  const std::string name = scene.file().empty() ? scene.settings().title : scene.file().string();
-  std::fprintf(out, "scene   %s (\"%s\")\n", name.c_str(), scene.settings().title.c_str());
+  // Names and the title come from the scene: shown escaped and shortened (scene_text.h).
+  const std::string title = lua::displayText(scene.settings().title, lua::kTitleBytes);
+  const std::string name = scene.file().empty() ? title : lua::displayText(scene.file().string(), 4096);
+  std::fprintf(out, "scene   %s (\"%s\")\n", name.c_str(), title.c_str());
   std::fprintf(out, "run     %ld steps of %.6g s to t = %.6g s; %s, %d iterations; %.1f ms wall\n", info.steps,
                scene.settings().dt, w.time(),
                std::string(integratorName(def.integrator)).c_str(), def.iterations, info.wall_ms);
@@ -69,12 +91,22 @@ void printSummary(std::FILE* out, const lua::Scene& scene, const RunInfo& info) 
   constexpr size_t kShown = 20;
   for (size_t i = 0; i < ids.size() && i < kShown; ++i) {
     const Body& b = w.body(ids[i]);
-    std::fprintf(out, "  %4u  %-12s %-6s %-24s %-9s %-24s %s\n", b.uid, b.name.substr(0, 12).c_str(),
+    std::fprintf(out, "  %4u  %-12s %-6s %-24s %-9s %-24s %s\n", b.uid, column(b.name, 12).c_str(),
                  b.isStatic() ? "static" : "", vec(b.position()).c_str(), fixed(b.angle).c_str(), vec(b.velocity).c_str(),
                  fixed(b.angular_velocity).c_str());
   }
   if (ids.size() > kShown) std::fprintf(out, "  ... and %zu more (use --json for all)\n", ids.size() - kShown);
   std::fprintf(out, "check   %s\n", info.check.c_str());
+  const std::vector<std::string> list = incidents(w, info);
+  if (!list.empty()) {
+    std::fprintf(out, "incidents %zu%s: the run blew up%s\n", list.size(),
+                 info.expect_incidents ? " (expected: scene.expect_incidents)" : "",
+                 info.expect_incidents ? "" : " (exit status 3)");
+    constexpr size_t kListed = 5;
+    for (size_t i = 0; i < list.size() && i < kListed; ++i)
+      std::fprintf(out, "  %s\n", lua::displayText(list[i], lua::kMessageBytes).c_str());
+    if (list.size() > kListed) std::fprintf(out, "  ... and %zu more (use --json for all)\n", list.size() - kListed);
+  }
 }
 
 void printJson(std::FILE* out, const lua::Scene& scene, const RunInfo& info) {
@@ -94,10 +126,10 @@ void printJson(std::FILE* out, const lua::Scene& scene, const RunInfo& info) {
   s += "],\"energy\":{\"kinetic\":" + jsonNumber(w.kineticEnergy()) + ",\"potential\":" + jsonNumber(w.potentialEnergy()) +
        "},\"incidents\":[";
   first = true;
-  for (const Incident& incident : w.incidents()) {
+  for (const std::string& incident : incidents(w, info)) {
     s += first ? "" : ",";
     first = false;
-    s += jsonString(incident.message());
+    s += jsonString(incident);
   }
   s += "],\"check\":" + jsonString(info.check) + "}\n";
   std::fputs(s.c_str(), out);

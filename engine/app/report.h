@@ -3,6 +3,7 @@
 
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "rigidlab/lua/scene.h"
 
@@ -12,7 +13,16 @@ struct RunInfo {
   long steps = 0;
   double wall_ms = 0.0;
   std::string check;  // "passed", "failed", "none"
+  // The first step after which the world's energy was not finite (0: it stayed finite), and that
+  // energy.
+  long energy_blowup_step = 0;
+  double energy_blowup_time = 0.0, blowup_kinetic = 0.0, blowup_potential = 0.0;
+  bool expect_incidents = false;  // scene.expect_incidents
 };
+
+// What went wrong in a run that did not fail (RunInfo, World::incidents): one message per frozen
+// body, and one for a non-finite energy. Empty for a clean run.
+std::vector<std::string> incidents(const World& world, const RunInfo& info);
 
 void printSummary(std::FILE* out, const lua::Scene& scene, const RunInfo& info);
 void printJson(std::FILE* out, const lua::Scene& scene, const RunInfo& info);

@@ -11,6 +11,7 @@
 #include "report.h"
 #include "rigidlab/error.h"
 #include "rigidlab/lua/scene.h"
+#include "rigidlab/lua/scene_text.h"
 
 namespace rigidlab::app {
 namespace {
@@ -34,8 +35,17 @@ Runs a scene headless: PopulateWorld, then steps (calling OnStep after each), th
   --trace-every K   ... every K steps (default 1), plus the initial and the final state
   --quiet           no summary (errors and the scene's print output still appear)
 
-Exit status: 0 success, 1 scene error or failed Check, 2 usage error.
+A run may take at most 10000000 steps (--steps, or --time / the scene's duration divided by
+dt): a longer one is refused before it starts.
+
+Exit status: 0 success, 1 scene error or failed Check, 2 usage error, 3 the run blew up: the
+NaN firewall froze a body or the energy became non-finite (listed as "incidents" in the summary
+and the JSON), unless the scene sets scene.expect_incidents = true.
 )";
+
+// The most steps one run may take (README "Security"): about 10 s of an empty world's steps, and
+// 46 hours of simulated time at 1/60 s. dt = 1e-12 with --time 1 would otherwise ask for 1e12.
+constexpr long kMaxRunSteps = 10000000;
 
 constexpr const char* kCheckHelp = R"(usage: rigidlab check SCENE.lua
 
@@ -48,7 +58,7 @@ std::unique_ptr<lua::Scene> loadOrReport(const std::string& path) {
   try {
     return lua::Scene::loadFile(path);
   } catch (const lua::SceneError& e) {
-    std::fprintf(stderr, "%s\n", e.what());
+    std::fprintf(stderr, "%s\n", lua::displayText(e.what(), lua::kMessageBytes, "\n\t").c_str());
   }
   return nullptr;
 }
@@ -111,11 +121,22 @@ int runCommand(const std::vector<std::string>& argv) {
   const double h = scene->settings().dt;
   long full_steps;
   double last = 0.0;  // length of a final partial step, if any
+  // Refused before anything is converted to an integer: total / h can be 1e300 or infinite.
+  const auto refuse = [&](const std::string& what) {
+    std::fprintf(stderr, "run: %s, more than the limit of %ld steps per run; use a larger dt or a shorter run\n",
+                 what.c_str(), kMaxRunSteps);
+    return time || steps || dt ? kExitUsage : kExitSceneError;  // the command line's or the scene's settings
+  };
   if (steps) {
+    if (*steps > kMaxRunSteps) return refuse("--steps " + std::to_string(*steps) + " asks for " + std::to_string(*steps) + " steps");
     full_steps = *steps;
   } else {
     const double total = time.value_or(scene->settings().duration);
-    full_steps = static_cast<long>(std::floor(total / h + 1e-9));
+    const double count = std::floor(total / h + 1e-9);
+    char what[160];
+    std::snprintf(what, sizeof what, "reaching t = %g s with steps of dt = %g s takes %.3g steps", total, h, count);
+    if (!(count <= static_cast<double>(kMaxRunSteps))) return refuse(what);
+    full_steps = static_cast<long>(count);
     last = total - static_cast<double>(full_steps) * h;
     if (last <= 1e-9 * h) last = 0.0;
   }
@@ -130,6 +151,7 @@ int runCommand(const std::vector<std::string>& argv) {
   }
 
   RunInfo info;
+  info.expect_incidents = scene->settings().expect_incidents;
   const auto start = std::chrono::steady_clock::now();
   try {
     Progress progress(!json && !args.flag("quiet"));
@@ -140,12 +162,22 @@ int runCommand(const std::vector<std::string>& argv) {
       scene->step(i < full_steps ? h : last);
       ++info.steps;
       for (; reported < world.incidents().size(); ++reported)
-        std::fprintf(stderr, "warning: %s\n", world.incidents()[reported].message().c_str());
+        std::fprintf(stderr, "warning: %s\n", lua::displayText(world.incidents()[reported].message(), lua::kMessageBytes).c_str());
+      if (info.energy_blowup_step == 0) {
+        const double kinetic = world.kineticEnergy(), potential = world.potentialEnergy();
+        if (!std::isfinite(kinetic) || !std::isfinite(potential)) {
+          info.energy_blowup_step = world.stepCount();
+          info.energy_blowup_time = world.time();
+          info.blowup_kinetic = kinetic;
+          info.blowup_potential = potential;
+          std::fprintf(stderr, "warning: %s\n", incidents(world, info).back().c_str());
+        }
+      }
       if (trace && (info.steps % trace_every == 0 || info.steps == total_steps)) trace->write(world);
       progress.update(world.time(), end_time);
     }
   } catch (const lua::SceneError& e) {
-    std::fprintf(stderr, "%s\n", e.what());
+    std::fprintf(stderr, "%s\n", lua::displayText(e.what(), lua::kMessageBytes, "\n\t").c_str());
     return kExitSceneError;
   }
   info.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -155,10 +187,11 @@ int runCommand(const std::vector<std::string>& argv) {
   try {
     scene->runCheck();
   } catch (const lua::SceneError& e) {
-    std::fprintf(stderr, "%s\n", e.what());
+    std::fprintf(stderr, "%s\n", lua::displayText(e.what(), lua::kMessageBytes, "\n\t").c_str());
     info.check = "failed";
     status = kExitSceneError;
   }
+  if (status == kExitOk && !info.expect_incidents && !incidents(world, info).empty()) status = kExitIncidents;
   if (json) {
     printJson(stdout, *scene, info);
   } else if (!args.flag("quiet")) {
@@ -182,7 +215,8 @@ int checkCommand(const std::vector<std::string>& argv) {
                                      {"OnKey", scene->hasOnKey()}, {"OnDraw", scene->hasOnDraw()}})
     if (present) hooks += std::string(hooks.empty() ? "" : ", ") + name;
   std::printf("%s: ok: \"%s\", %d bodies, %zu forces; hooks: %s\n", args.positional()[0].c_str(),
-              scene->settings().title.c_str(), w.bodyCount(), w.forceIds().size(), hooks.empty() ? "none" : hooks.c_str());
+              lua::displayText(scene->settings().title, lua::kTitleBytes).c_str(), w.bodyCount(), w.forceIds().size(),
+              hooks.empty() ? "none" : hooks.c_str());
   return kExitOk;
 }
 

@@ -244,6 +244,7 @@ function Draw:text(position, text, color) end
 ---@field duration? number length of a headless run, s, default 10
 ---@field camera? {center?: rigidlab.VecLike, height?: number} initial sandbox view, metres
 ---@field memory_limit? number MiB the scene's Lua may allocate, at most the host's cap (256 by default)
+---@field expect_incidents? boolean default false: bodies frozen by the NaN firewall or a non-finite energy are expected (a headless run then still exits with 0, not 3)
 
 ---@type rigidlab.SceneSettings
 scene = {}

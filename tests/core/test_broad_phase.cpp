@@ -7,6 +7,7 @@
 #include "broad_phase.h"
 #include "rigidlab/world.h"
 #include "stages.h"
+#include "test_util.h"
 
 using namespace rigidlab;
 
@@ -124,4 +125,114 @@ TEST_CASE("the kept pair list gives the same simulation, bit for bit, as rebuild
   MESSAGE("steps served by the kept list: " << reused_on << " of 400");
   REQUIRE(rebuilt.size() == kept.size());
   CHECK(std::memcmp(rebuilt.data(), kept.data(), kept.size() * sizeof(double)) == 0);
+}
+
+TEST_CASE("both broad phases stop at their pair limit and say where the boxes crowd") {
+  // 400 coincident boxes would make 79 800 pairs; the limit stops the pass at 1000.
+  std::vector<Proxy> proxies(400);
+  for (Proxy& p : proxies) p = {{Vec2(1.0, 2.0), Vec2(2.0, 3.0)}, false, true};
+  PairLimit limit;
+  limit.pairs = 1000;
+  for (int grid = 0; grid < 2; ++grid) {
+    CAPTURE(grid);
+    std::vector<BodyPair> pairs;
+    PairOverflow overflow;
+    const bool done = grid ? GridBroadPhase().findPairs(proxies, pairs, limit, &overflow)
+                           : AllPairsBroadPhase().findPairs(proxies, pairs, limit, &overflow);
+    CHECK_FALSE(done);
+    CHECK(pairs.size() == 1000);
+    CHECK_FALSE(overflow.tests);
+    CHECK(overflow.crowd == 400);
+    CHECK(overflow.where == Vec2(1.5, 2.5));
+  }
+  // Under the limit nothing changes: the same pairs as without one.
+  limit.pairs = 79800;
+  std::vector<BodyPair> pairs;
+  CHECK(GridBroadPhase().findPairs(proxies, pairs, limit));
+  CHECK(pairs.size() == 79800);
+}
+
+TEST_CASE("the grid stops at its test limit in a cell crowded with boxes that do not overlap") {
+  // One large dynamic box sets a large cell; 2000 small static boxes side by side fill one cell
+  // without overlapping (and static-static pairs are never pairs): about 2 million tests, no pair.
+  std::vector<Proxy> proxies;
+  proxies.push_back({{Vec2(0.0, 0.0), Vec2(400.0, 400.0)}, false, true});
+  for (int i = 0; i < 2000; ++i) {
+    const Vec2 lower(1000.0 + 0.02 * (i % 40), 1000.0 + 0.02 * (i / 40));
+    proxies.push_back({{lower, lower + Vec2(0.01, 0.01)}, true, true});
+  }
+  PairLimit limit;
+  limit.tests = 100000;
+  std::vector<BodyPair> pairs;
+  PairOverflow overflow;
+  CHECK_FALSE(GridBroadPhase().findPairs(proxies, pairs, limit, &overflow));
+  CHECK(overflow.tests);
+  CHECK(overflow.crowd == 2000);
+  CHECK(GridBroadPhase().findPairs(proxies, pairs));  // without a limit: no pairs at all
+  CHECK(pairs.empty());
+}
+
+TEST_CASE("a step over the pair cap fails, naming the crowd, and leaves the world as it was") {
+  WorldDef def;
+  def.pair_cap = 1000;
+  def.pair_cap_per_body = 2;
+  World w(def);
+  struct NanForce final : Force {
+    void evaluate(const ForceInput&, ForceOutput& out) override { out.a.force = {NAN, 0.0}; }
+    std::string_view kind() const override { return "nan"; }
+  };
+  const BodyId frozen = test::addCircle(w, 0.5, {40, 0});  // frozen by the NaN firewall in the failed step
+  w.addForce(std::make_unique<NanForce>(), frozen);
+  std::vector<BodyId> heap;
+  for (int i = 0; i < 100; ++i) heap.push_back(test::addCircle(w, 0.5, {0.001 * i, 0}));  // 4950 pairs
+  w.setVelocity(heap[5], {1, 2});
+  const std::string message = test::errorOf([&] { w.step(1.0 / 60.0); });
+  CHECK(message == "too many bodies on top of each other at step 1 (t = 0 s): 100 bodies overlap around (0, "
+                   "-0.001362), more than the 1000 candidate contact pairs a step may have (min(1000000, max(1000, 2 per "
+                   "body)) for 101 bodies); spread them out");
+  CHECK(w.time() == 0.0);
+  CHECK(w.stepCount() == 0);
+  CHECK_FALSE(w.isStepping());
+  CHECK(w.incidents().empty());
+  CHECK_FALSE(w.body(frozen).isStatic());
+  CHECK(w.body(frozen).position() == Vec2(40, 0));
+  CHECK(w.body(heap[5]).position() == Vec2(0.005, 0));
+  CHECK(w.body(heap[5]).velocity == Vec2(1, 2));
+  // Spread out, the same bodies step (and the frozen one is frozen for real).
+  for (int i = 0; i < 100; ++i) w.setTransform(heap[i], {2.0 * i, 10}, 0.0);
+  w.step(1.0 / 60.0);
+  CHECK(w.incidents().size() == 1);
+}
+
+TEST_CASE("a kept pair list over the cap falls back to a plain pass: the step succeeds") {
+  // Boxes in a row with 0.1 m gaps: no box overlaps another, but their boxes grown by a quarter
+  // (the kept list, PairCache) do: 2 per box, over a cap of 1 per box.
+  WorldDef def;
+  def.pair_cap = 1;
+  def.pair_cap_per_body = 1;
+  def.pair_cap_max = 1000;
+  def.gravity = Vec2::Zero();
+  World w(def);
+  for (int i = 0; i < 50; ++i) test::addBox(w, 1.0, 1.0, {1.1 * i, 0});
+  CHECK(test::errorOf([&] { w.step(1.0 / 60.0); }) == "(no error)");
+  CHECK(w.stats().pairs == 0);
+}
+
+TEST_CASE("the pair cap stops growing with the number of bodies at pair_cap_max") {
+  WorldDef def;
+  def.pair_cap = 10;
+  def.pair_cap_per_body = 32;
+  def.pair_cap_max = 500;
+  World w(def);
+  // 40 clusters of 5 coincident circles: 400 pairs, under 32 per body but over the ceiling of 500
+  // once a cluster more is added.
+  for (int c = 0; c < 40; ++c)
+    for (int i = 0; i < 5; ++i) test::addCircle(w, 0.5, {3.0 * c, 0.001 * i});
+  CHECK(test::errorOf([&] { w.step(1.0 / 60.0); }) == "(no error)");
+  CHECK(w.stats().pairs == 400);
+  for (int c = 40; c < 70; ++c)
+    for (int i = 0; i < 5; ++i) test::addCircle(w, 0.5, {3.0 * c, 0.001 * i});
+  CHECK(test::errorOf([&] { w.step(1.0 / 60.0); }).find("more than the 500 candidate contact pairs") != std::string::npos);
+  def.pair_cap_max = 5;
+  CHECK(test::errorOf([&] { World bad(def); }) == "pair_cap_max must be at least pair_cap (10), got 5");
 }

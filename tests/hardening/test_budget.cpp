@@ -479,7 +479,7 @@ TEST_CASE("memory: a Lua force that allocates without bound fails the step with 
       end }
     end)lua");
   const Outcome o = timed([&] { scene->step(); });
-  CHECK(o.message == "test.lua:6: evaluate: not enough memory (the scene's limit is 32 MiB)");  // the force's line
+  CHECK(o.message == "test.lua:7: evaluate: not enough memory (the scene's limit is 32 MiB)");  // the loop's line
   CHECK(scene->world().time() == 0.0);
 }
 

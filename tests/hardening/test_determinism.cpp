@@ -19,6 +19,10 @@
 #include <string>
 #include <vector>
 
+#include <lua.hpp>
+
+#include <chrono>
+
 #include "util.h"
 
 using namespace hardening;
@@ -122,24 +126,54 @@ std::string run(const std::string& command) {
 
 std::string self() { return fs::read_symlink("/proc/self/exe").string(); }
 
-// A scene that reads a string-keyed table with pairs() (whose order follows the per-process hash
-// seed), but creates its bodies in sorted order with host-seeded math.random: the trace must not
-// depend on the seed.
+// A scene that builds its world inside pairs() over string keys (a pile of 20 boxes dropped in
+// the traversal's order, so the pile depends on it), then walks tables, functions and bodies as
+// keys too: Lua's own order of all of these changes from process to process (string hashes are
+// seeded per process, the others hashed by address); rigidlab's pairs and next must not.
 const char* kSeedScene = R"lua(
-  scene = { gravity = {0, -9.81} }
+  scene = { gravity = {0, -9.81}, integrator = "semi_implicit_euler" }
+  local order = {}
   function PopulateWorld(world)
     world:add_box{ width = 40, height = 1, position = {0, -0.5}, static = true }
-    local sizes = { alpha = 0.3, bravo = 0.4, charlie = 0.5, delta = 0.35, echo = 0.45, foxtrot = 0.25,
-                    golf = 0.3, hotel = 0.55, india = 0.2, juliett = 0.4 }
-    local order = {}
-    for name in pairs(sizes) do order[#order + 1] = name end
-    print("pairs order: " .. table.concat(order, " "))
-    table.sort(order)
-    for i, name in ipairs(order) do
-      world:add_circle{ name = name, radius = sizes[name], position = {math.random(-8, 8) + 0.1 * i, 1 + 2 * math.random()},
-                        velocity = {math.random() - 0.5, 0}, restitution = 0.3 }
+    local sizes = {}
+    for i, name in ipairs{"alpha", "bravo", "charlie", "delta", "echo", "foxtrot", "golf", "hotel", "india",
+                          "juliett", "kilo", "lima", "mike", "november", "oscar", "papa", "quebec", "romeo",
+                          "sierra", "tango"} do
+      sizes[name] = 0.3 + 0.02 * i
     end
+    local i = 0
+    for name, size in pairs(sizes) do
+      i = i + 1
+      order[#order + 1] = name
+      world:add_box{ name = name, width = size, height = size, position = {0.01 * (i % 3), 0.5 + 0.7 * i} }
+    end
+    local objects = {}
+    for k = 1, 12 do objects[{k}] = k; objects[function() return k end] = -k end
+    for key, value in pairs(objects) do order[#order + 1] = value end
+    local bodies = {}
+    for _, b in ipairs(world:bodies()) do bodies[b] = b.id end
+    local key, id = next(bodies)
+    while key do
+      order[#order + 1] = "#" .. id
+      key, id = next(bodies, key)
+    end
+    print("pairs order: " .. table.concat(order, " "))
   end)lua";
+
+// Lua's own pairs() order of the same string keys in a plain Lua state (no rigidlab), to show the
+// processes did differ.
+std::string rawLuaOrder() {
+  lua_State* L = luaL_newstate();
+  luaL_openlibs(L);
+  const char* chunk = R"lua(
+    local t, order = {}, {}
+    for _, name in ipairs{"alpha", "bravo", "charlie", "delta", "echo", "foxtrot", "golf", "hotel"} do t[name] = true end
+    for name in pairs(t) do order[#order + 1] = name end
+    return table.concat(order, " "))lua";
+  std::string order = luaL_dostring(L, chunk) == LUA_OK ? lua_tostring(L, -1) : "error";
+  lua_close(L);
+  return order;
+}
 
 }  // namespace
 
@@ -160,7 +194,7 @@ int hardeningHelperMain(int argc, char** argv) {
     options.log = [&](const std::string& line) { pairs_order = line; };
     auto scene = Scene::loadString(kSeedScene, "seed.lua", options);
     for (int i = 0; i < 300; ++i) scene->step();
-    std::printf("%s\n%s\n", hex(stateHash(scene->world())).c_str(), pairs_order.c_str());
+    std::printf("%s\n%s\n%s\n", hex(stateHash(scene->world())).c_str(), pairs_order.c_str(), rawLuaOrder().c_str());
     return 0;
   }
   return -1;
@@ -188,18 +222,91 @@ TEST_CASE("determinism: the same hashes in 3 separate processes") {
   }
 }
 
-TEST_CASE("determinism: processes with different Lua hash seeds give the same trace (D2)") {
-  std::set<std::string> hashes, orders;
+TEST_CASE("determinism: a scene that builds its world inside pairs() gives the same bits in every process (D2)") {
+  std::set<std::string> hashes, orders, raw_orders;
   for (int i = 0; i < 6; ++i) {
     const std::string out = run(self() + " --seed-scene");
-    const size_t nl = out.find('\n');
-    REQUIRE(nl != std::string::npos);
+    const size_t nl = out.find('\n'), nl2 = out.find('\n', nl + 1);
+    REQUIRE(nl2 != std::string::npos);
     hashes.insert(out.substr(0, nl));
-    orders.insert(out.substr(nl + 1));
+    orders.insert(out.substr(nl + 1, nl2 - nl - 1));
+    raw_orders.insert(out.substr(nl2 + 1));
   }
-  MESSAGE(orders.size() << " different pairs() orders in 6 processes, " << hashes.size() << " state hash(es)");
-  CHECK(orders.size() >= 2);  // the seeds did differ (pairs() order follows them) ...
-  CHECK(hashes.size() == 1);  // ... and the simulation did not
+  MESSAGE(raw_orders.size() << " different orders of Lua's own pairs() in 6 processes; rigidlab's: " << orders.size()
+                            << " order(s), " << hashes.size() << " state hash(es); order: " << *orders.begin());
+  CHECK(raw_orders.size() >= 2);  // the seeds did differ (Lua's own order follows them) ...
+  CHECK(orders.size() == 1);      // ... and rigidlab's pairs and next did not ...
+  CHECK(hashes.size() == 1);      // ... nor the simulation
+  // Numbers, then strings in byte order, then tables and functions in creation order, then bodies.
+  CHECK(orders.begin()->starts_with("pairs order: alpha bravo charlie delta echo foxtrot golf hotel india juliett "
+                                    "kilo lima mike november oscar papa quebec romeo sierra tango 1 -1 2 -2 3 -3"));
+  CHECK(orders.begin()->ends_with("#1 #2 #3 #4 #5 #6 #7 #8 #9 #10 #11 #12 #13 #14 #15 #16 #17 #18 #19 #20 #21"));
+}
+
+TEST_CASE("determinism: pairs() visits keys in a fixed order, honours __pairs, survives edits during the walk") {
+  auto scene = load(R"lua(
+    local function walk(t)
+      local seen = {}
+      for k, v in pairs(t) do seen[#seen + 1] = tostring(k) .. "=" .. tostring(v) end
+      return table.concat(seen, " ")
+    end
+    local mixed = {[3] = "c", [1] = "a", [2.5] = "h", [-7] = "m", b = 1, a = 2, [true] = "t", [false] = "f", [10] = "x"}
+    assert(walk(mixed) == "-7=m 1=a 2.5=h 3=c 10=x a=2 b=1 false=f true=t", walk(mixed))
+    -- Removing and changing fields during the walk: removed keys are skipped, values are current.
+    local t = {a = 1, b = 2, c = 3, d = 4}
+    local seen = {}
+    for k, v in pairs(t) do
+      seen[#seen + 1] = k .. v
+      if k == "a" then t.b = nil; t.c = 30 end
+    end
+    assert(table.concat(seen, " ") == "a1 c30 d4", table.concat(seen, " "))
+    -- next: the same order, and next(t) on an empty table is nil.
+    local n, k = {}, next(mixed)
+    while k ~= nil do n[#n + 1] = tostring(k); k = next(mixed, k) end
+    assert(table.concat(n, " ") == "-7 1 2.5 3 10 a b false true", table.concat(n, " "))
+    assert(next({}) == nil)
+    assert(select("#", next({})) == 1)
+    -- __pairs of a table is honoured, like Lua's pairs.
+    local proxy = setmetatable({}, {__pairs = function(p) return function(_, i) if i < 3 then return i + 1, "p" end end, p, 0 end})
+    assert(walk(proxy) == "1=p 2=p 3=p", walk(proxy))
+    -- Errors name the function and the value, in the API's words.
+    local ok, message = pcall(pairs, 5)
+    assert(not ok and message:find("pairs: expects a table, got 5", 1, true), message)
+    ok, message = pcall(next, {a = 1}, "zz")
+    assert(not ok and message:find("next: invalid key to 'next'", 1, true), message)
+    function PopulateWorld(world)
+      local b = world:add_circle{ radius = 1 }
+      local ok2, m2 = pcall(pairs, b)
+      assert(not ok2 and m2:find("pairs: expects a table, got body (id 1)", 1, true), m2)
+    end)lua");
+  CHECK(scene->world().bodyCount() == 1);
+}
+
+TEST_CASE("determinism: the cost of ordered pairs and next (measured, printed)") {
+  // A traversal of 1000 string keys, 2000 times: rigidlab's pairs against Lua's own in a plain
+  // state (same machine, same process).
+  const char* loop = R"lua(
+    local t = {}
+    for i = 1, 1000 do t["key" .. i] = i end
+    local sum = 0
+    for r = 1, 2000 do for k, v in pairs(t) do sum = sum + v end end
+    return sum)lua";
+  lua_State* L = luaL_newstate();
+  luaL_openlibs(L);
+  const auto t0 = std::chrono::steady_clock::now();
+  REQUIRE(luaL_dostring(L, loop) == LUA_OK);
+  const double raw_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  lua_close(L);
+  SceneOptions options;
+  options.limits.hook_seconds = 30;
+  const std::string source = std::string("local function run() ") + (std::strchr(loop, '\n') + 1) +
+                             " end\nfunction PopulateWorld(world) run() end";
+  const auto t1 = std::chrono::steady_clock::now();
+  load(source, options);
+  const double ordered_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t1).count();
+  MESSAGE("pairs over 1000 string keys: Lua's own " << raw_ms / 2000 * 1000 << " us per traversal, rigidlab's ordered "
+          << ordered_ms / 2000 * 1000 << " us (" << ordered_ms / raw_ms << "x)");
+  CHECK(ordered_ms < 40 * raw_ms + 200);  // a loose guard against a regression (measured: about 7x)
 }
 
 TEST_CASE("determinism: a scene hashed twice in one process gives the same value (no leftover state)") {

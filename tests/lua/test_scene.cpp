@@ -253,7 +253,7 @@ TEST_CASE("the memory cap ends a memory bomb with a clear error, and the host su
   } catch (const SceneError& e) {
     message = e.what();
   }
-  CHECK(message == "PopulateWorld: not enough memory (the scene's limit is 32 MiB)");
+  CHECK(message == "test.lua:3: PopulateWorld: not enough memory (the scene's limit is 32 MiB)");  // the loop's line
   // A normal scene still loads afterwards.
   CHECK(load("function PopulateWorld(world) world:add_circle{ radius = 1 } end")->world().bodyCount() == 1);
 }

@@ -1,14 +1,29 @@
 // Stage 2 of the step: candidate pairs from bounding boxes (origin.md §7).
 #include "broad_phase.h"
 
+#include <algorithm>
+#include <cstdio>
 #include <limits>
+#include <string>
 
+#include "rigidlab/error.h"
 #include "stages.h"
 #include "world_impl.h"
 
 namespace rigidlab {
 
-void AllPairsBroadPhase::findPairs(std::span<const Proxy> proxies, std::vector<BodyPair>& pairs) {
+size_t crowdAround(std::span<const Proxy> proxies, uint32_t i) {
+  size_t n = 0;
+  for (const Proxy& p : proxies) n += p.active && p.aabb.overlaps(proxies[i].aabb);
+  return n;
+}
+
+void noteOverflow(PairOverflow* overflow, bool tests, size_t crowd, const Aabb& box) {
+  if (overflow) *overflow = {tests, crowd, 0.5 * (box.lower + box.upper)};
+}
+
+bool AllPairsBroadPhase::findPairs(std::span<const Proxy> proxies, std::vector<BodyPair>& pairs, const PairLimit& limit,
+                                   PairOverflow* overflow) {
   pairs.clear();
   const uint32_t n = static_cast<uint32_t>(proxies.size());
   for (uint32_t i = 0; i < n; ++i) {
@@ -16,9 +31,16 @@ void AllPairsBroadPhase::findPairs(std::span<const Proxy> proxies, std::vector<B
     if (!p.active) continue;
     for (uint32_t j = i + 1; j < n; ++j) {
       const Proxy& q = proxies[j];
-      if (q.active && !(p.is_static && q.is_static) && p.aabb.overlaps(q.aabb)) pairs.push_back({i, j});
+      if (q.active && !(p.is_static && q.is_static) && p.aabb.overlaps(q.aabb)) {
+        if (pairs.size() >= limit.pairs) {
+          noteOverflow(overflow, false, crowdAround(proxies, i), p.aabb);
+          return false;
+        }
+        pairs.push_back({i, j});
+      }
     }
   }
+  return true;
 }
 
 namespace {
@@ -59,25 +81,25 @@ void filterPairs(const PairCache& c, std::span<const Proxy> proxies, std::vector
     if (proxies[q.a].aabb.overlaps(proxies[q.b].aabb)) pairs.push_back(q);
 }
 
-void findPairsCached(WorldImpl& w) {
+// False if the pass reached `limit` (see PairLimit). A list of grown boxes that reaches it is
+// dropped for a plain pass: only the boxes themselves decide whether the step fails.
+bool findPairsCached(WorldImpl& w, const PairLimit& limit, PairOverflow& overflow) {
   PairCache& c = w.pair_cache;
   if (!pairCacheOn()) {
     c.valid = false;
-    w.broad_phase->findPairs(w.proxies, w.pairs);
-    return;
+    return w.broad_phase->findPairs(w.proxies, w.pairs, limit, &overflow);
   }
   if (cacheHolds(c, w.proxies)) {
     filterPairs(c, w.proxies, w.pairs);
     ++c.age;
     w.stats.pairs_reused = true;
-    return;
+    return true;
   }
   if (c.valid && c.age < kShortLife) c.cooldown = kCooldown;
   c.valid = false;
   if (c.cooldown > 0) {
     --c.cooldown;
-    w.broad_phase->findPairs(w.proxies, w.pairs);
-    return;
+    return w.broad_phase->findPairs(w.proxies, w.pairs, limit, &overflow);
   }
   c.grown.assign(w.proxies.begin(), w.proxies.end());
   for (Proxy& g : c.grown) {
@@ -87,10 +109,34 @@ void findPairsCached(WorldImpl& w) {
     g.aabb.lower -= grow;
     g.aabb.upper += grow;
   }
-  w.broad_phase->findPairs(c.grown, c.pairs);
+  if (!w.broad_phase->findPairs(c.grown, c.pairs, limit)) {
+    c.pairs.clear();
+    c.cooldown = kCooldown;
+    return w.broad_phase->findPairs(w.proxies, w.pairs, limit, &overflow);
+  }
   c.valid = true;
   c.age = 0;
   filterPairs(c, w.proxies, w.pairs);
+  return true;
+}
+
+// Box tests allowed per allowed pair (PairLimit::tests): a grid pass makes a few per pair found
+// (a pair is tested in every cell its boxes share, up to 16, plus the near misses).
+constexpr size_t kTestsPerPair = 64;
+
+std::string overflowMessage(const WorldImpl& w, const PairOverflow& o, size_t bodies, const PairLimit& limit) {
+  const std::string rule = "min(" + std::to_string(w.def.pair_cap_max) + ", max(" + std::to_string(w.def.pair_cap) + ", " +
+                           std::to_string(w.def.pair_cap_per_body) + " per body)) for " + std::to_string(bodies) + " bodies";
+  const std::string at = " at step " + std::to_string(w.step_count + 1) + " (t = " + formatNumber(w.clock.t) + " s): ";
+  char where[64];
+  std::snprintf(where, sizeof where, "(%.4g, %.4g)", o.where.x(), o.where.y());
+  if (o.tests)
+    return "too many bodies crammed into one place" + at + std::to_string(o.crowd) + " bodies share a grid cell around " +
+           where + ", and finding their contacts would take more than the " + std::to_string(limit.tests) +
+           " box tests a step may make (" + std::to_string(kTestsPerPair) + " per candidate pair allowed, " + rule + ")";
+  return "too many bodies on top of each other" + at + std::to_string(o.crowd) + " bodies overlap around " + where +
+         ", more than the " + std::to_string(limit.pairs) + " candidate contact pairs a step may have (" + rule +
+         "); spread them out";
 }
 
 }  // namespace
@@ -99,6 +145,7 @@ void usePairCache(bool on) { pairCacheOn() = on; }
 
 void findPairs(WorldImpl& w) {
   const size_t n = w.shapes.size();
+  size_t bodies = 0;  // active shapes, in fact: what the cap scales with
   if (n < 2) {
     w.pairs.clear();
     w.pair_cache.valid = false;
@@ -120,6 +167,7 @@ void findPairs(WorldImpl& w) {
     const Body& b = w.bodies[s.body.index];
     p.active = w.shape_alive[i] && b.enabled;
     if (!p.active) continue;
+    ++bodies;
     p.is_static = !b.isDynamic();  // static and kinematic bodies do not collide with each other
     const Shape& shape = s.geometry;
     if (shape.type != ShapeType::Circle) {
@@ -159,7 +207,15 @@ void findPairs(WorldImpl& w) {
     w.shape_views[i].placed.poly = {&w.world_vertices[at], &w.world_normals[at], static_cast<int>(shape.vertices.size()),
                                     shape.extent};
   }
-  findPairsCached(w);
+  PairLimit limit;
+  limit.pairs = std::min(w.def.pair_cap_max, std::max(w.def.pair_cap, static_cast<size_t>(w.def.pair_cap_per_body) * bodies));
+  limit.tests = limit.pairs > SIZE_MAX / kTestsPerPair ? SIZE_MAX : kTestsPerPair * limit.pairs;
+  PairOverflow overflow;
+  if (!findPairsCached(w, limit, overflow)) {
+    w.pairs.clear();
+    w.pair_cache.valid = false;
+    throw InputError("bodies", overflowMessage(w, overflow, bodies, limit));
+  }
 }
 
 }  // namespace rigidlab

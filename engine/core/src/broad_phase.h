@@ -2,6 +2,7 @@
 // deterministic order (a < b, ascending), static–static pairs never (origin.md §7).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -37,25 +38,49 @@ struct PairCache {
   bool valid = false;
 };
 
+// How far one pass may go (WorldDef::pair_cap): it stops as soon as it has `pairs` pairs or has
+// made `tests` box tests, so bodies heaped on each other cannot make it quadratic in memory or time.
+struct PairLimit {
+  size_t pairs = SIZE_MAX;
+  size_t tests = SIZE_MAX;
+};
+
+// Where a pass that reached its limit stopped: the boxes crowding there, for the error message.
+struct PairOverflow {
+  bool tests = false;          // the test limit was reached (else the pair limit)
+  size_t crowd = 0;            // boxes in the grid cell (or overlapping the box) where it stopped
+  Vec2 where = Vec2::Zero();   // the centre of the first of those boxes
+};
+
+// For the passes' overflow reports: the active boxes overlapping proxies[i]'s (itself included),
+// and filling `overflow` (if given) with a crowd around `box`.
+size_t crowdAround(std::span<const Proxy> proxies, uint32_t i);
+void noteOverflow(PairOverflow* overflow, bool tests, size_t crowd, const Aabb& box);
+
 class BroadPhase {
  public:
   virtual ~BroadPhase() = default;
   // Replaces `pairs` with every pair of active proxies whose boxes overlap, skipping static–static.
-  virtual void findPairs(std::span<const Proxy> proxies, std::vector<BodyPair>& pairs) = 0;
+  // False if `limit` was reached first: `pairs` then holds what was found so far, in no particular
+  // order, and `overflow` (if given) says where.
+  virtual bool findPairs(std::span<const Proxy> proxies, std::vector<BodyPair>& pairs, const PairLimit& limit = {},
+                         PairOverflow* overflow = nullptr) = 0;
 };
 
 // The thesis's naive test of every pair (origin.md §7), with a bounding-box check per pair. O(n²):
-// fine for a few hundred bodies.
+// fine for a few hundred bodies. Only `limit.pairs` applies (testing every pair is its design).
 class AllPairsBroadPhase final : public BroadPhase {
  public:
-  void findPairs(std::span<const Proxy> proxies, std::vector<BodyPair>& pairs) override;
+  bool findPairs(std::span<const Proxy> proxies, std::vector<BodyPair>& pairs, const PairLimit& limit = {},
+                 PairOverflow* overflow = nullptr) override;
 };
 
 // A uniform grid rebuilt every step, with a list for boxes much larger than a cell
 // (spatial_grid.cpp): O(n) for scenes of similar-sized bodies. The default.
 class GridBroadPhase final : public BroadPhase {
  public:
-  void findPairs(std::span<const Proxy> proxies, std::vector<BodyPair>& pairs) override;
+  bool findPairs(std::span<const Proxy> proxies, std::vector<BodyPair>& pairs, const PairLimit& limit = {},
+                 PairOverflow* overflow = nullptr) override;
 
  private:
   struct Entry {

@@ -69,7 +69,8 @@ void radixSort(std::vector<T>& items, std::vector<T>& scratch, std::vector<uint3
 
 }  // namespace
 
-void GridBroadPhase::findPairs(std::span<const Proxy> proxies, std::vector<BodyPair>& pairs) {
+bool GridBroadPhase::findPairs(std::span<const Proxy> proxies, std::vector<BodyPair>& pairs, const PairLimit& limit,
+                               PairOverflow* overflow) {
   pairs.clear();
   entries_.clear();
   large_.clear();
@@ -82,7 +83,7 @@ void GridBroadPhase::findPairs(std::span<const Proxy> proxies, std::vector<BodyP
     extent += std::max(p.aabb.upper.x() - p.aabb.lower.x(), p.aabb.upper.y() - p.aabb.lower.y());
     ++dynamic;
   }
-  if (dynamic == 0) return;  // static–static pairs are never reported
+  if (dynamic == 0) return true;  // static–static pairs are never reported
   const double cell = std::max(2.0 * extent / dynamic, 1e-6);
   const double inv = 1.0 / cell;
   // Cells are numbered from the lowest corner of the boxes, so the keys are small non-negative
@@ -122,23 +123,34 @@ void GridBroadPhase::findPairs(std::span<const Proxy> proxies, std::vector<BodyP
   }
   radixSort(entries_, entry_scratch_, counts_, [](const Entry& e) { return e.key; });
 
+  // The limit (PairLimit) is checked as the pairs and tests are made, so a heap of coincident
+  // boxes stops after `limit.pairs` pairs instead of producing all n²/2 of them.
+  size_t tests = 0;
   const auto emit = [&](uint32_t a, uint32_t b) {
     if (a > b) std::swap(a, b);
+    if (pairs.size() >= limit.pairs) return false;
     pairs.push_back({a, b});
+    return true;
   };
   for (size_t start = 0; start < entries_.size();) {
     size_t end = start + 1;
     while (end < entries_.size() && entries_[end].key == entries_[start].key) ++end;
     const uint64_t here = entries_[start].key;
     for (size_t i = start; i < end; ++i) {
+      tests += end - i - 1;
       const Proxy& p = proxies[entries_[i].proxy];
-      for (size_t j = i + 1; j < end; ++j) {
+      bool full = tests > limit.tests;
+      for (size_t j = i + 1; j < end && !full; ++j) {
         const Proxy& q = proxies[entries_[j].proxy];
         if ((p.is_static && q.is_static) || !p.aabb.overlaps(q.aabb)) continue;
         // Report the pair only in the cell of the intersection's lower-left corner.
         const Vec2 corner = p.aabb.lower.cwiseMax(q.aabb.lower);
         if (key(floorToInt(corner.x() * inv), floorToInt(corner.y() * inv)) != here) continue;
-        emit(entries_[i].proxy, entries_[j].proxy);
+        full = !emit(entries_[i].proxy, entries_[j].proxy);
+      }
+      if (full) {
+        noteOverflow(overflow, tests > limit.tests, end - start, proxies[entries_[start].proxy].aabb);
+        return false;
       }
     }
     start = end;
@@ -147,14 +159,21 @@ void GridBroadPhase::findPairs(std::span<const Proxy> proxies, std::vector<BodyP
   for (size_t k = 0; k < large_.size(); ++k) {
     const uint32_t l = large_[k];
     const Proxy& big = proxies[l];
-    for (uint32_t i = 0; i < proxies.size(); ++i) {
+    tests += proxies.size();
+    bool full = tests > limit.tests;
+    for (uint32_t i = 0; i < proxies.size() && !full; ++i) {
       const Proxy& p = proxies[i];
       if (i == l || !p.active || (big.is_static && p.is_static) || !big.aabb.overlaps(p.aabb)) continue;
       if (is_large_[i] && i < l) continue;  // that pair was reported from i's side
-      emit(l, i);
+      full = !emit(l, i);
+    }
+    if (full) {
+      noteOverflow(overflow, tests > limit.tests, crowdAround(proxies, l), big.aabb);
+      return false;
     }
   }
   radixSort(pairs, pair_scratch_, counts_, [](const BodyPair& p) { return static_cast<uint64_t>(p.a) << 32 | p.b; });
+  return true;
 }
 
 }  // namespace rigidlab

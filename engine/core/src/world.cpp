@@ -21,6 +21,37 @@ namespace rigidlab {
 // ---------------------------------------------------------------------------------------------
 // The step: integrate → find pairs → narrow phase → solve contacts → correct positions → expire.
 
+namespace {
+
+// Undoes a step that failed before the contacts (a force threw, or the broad phase reached its
+// cap): the bodies the NaN firewall froze in it are unfrozen and forgotten, and every dynamic body
+// is put back to its state at the start of the step.
+void undoStep(WorldImpl& w, size_t incidents_before) {
+  for (size_t k = incidents_before; k < w.incidents.size(); ++k) {
+    for (size_t i = 0; i < w.bodies.size(); ++i) {
+      Body& b = w.bodies[i];
+      if (!w.alive[i] || b.uid != w.incidents[k].uid || !b.frozen) continue;
+      b.type = BodyType::Dynamic;
+      b.frozen = false;
+      b.inv_mass = 1.0 / b.mass;
+      b.inv_inertia = 1.0 / b.inertia;
+    }
+  }
+  w.incidents.resize(incidents_before);
+  for (size_t i = 0; i < w.bodies.size(); ++i) {
+    if (!w.alive[i] || w.bodies[i].isStatic()) continue;
+    Body& b = w.bodies[i];
+    b.center = w.start_center[i];
+    b.angle = w.start_angle[i];
+    b.velocity = w.start_velocity[i];
+    b.angular_velocity = w.start_angular_velocity[i];
+    WorldImpl::syncTransform(b);
+  }
+  w.locked = false;
+}
+
+}  // namespace
+
 void World::step(double dt) {
   WorldImpl& w = *impl_;
   if (w.locked) throw InputError("step", "step called while the world is stepping");
@@ -33,28 +64,24 @@ void World::step(double dt) {
   w.stats = StepStats{};
   w.dt = dt;
   w.locked = true;
+  const size_t incidents_before = w.incidents.size();
   const auto t0 = Clock::now();
   try {
     integrate(w, dt);  // origin.md §5: all non-contact forces, RK4 stages included
   } catch (...) {
-    // Only forces can throw, and they run only here: undo the partial integration.
-    for (size_t i = 0; i < w.bodies.size(); ++i) {
-      if (!w.alive[i] || w.bodies[i].isStatic()) continue;
-      Body& b = w.bodies[i];
-      b.center = w.start_center[i];
-      b.angle = w.start_angle[i];
-      b.velocity = w.start_velocity[i];
-      b.angular_velocity = w.start_angular_velocity[i];
-      WorldImpl::syncTransform(b);
-    }
-    w.locked = false;
+    undoStep(w, incidents_before);  // forces run only here
     throw;
   }
   guardNonFinite(w, "integrate");  // before contacts: a non-finite body must not touch others
   w.ccd_hit.assign(w.bodies.size(), 0);
   if (w.def.continuous) sweepFastBodies(w);  // origin.md §13: no tunnelling through static bodies
   const auto t1 = Clock::now();
-  findPairs(w);  // origin.md §7: all pairs, skipping static–static
+  try {
+    findPairs(w);  // origin.md §7: all pairs, skipping static–static; throws at WorldDef::pair_cap
+  } catch (...) {
+    undoStep(w, incidents_before);
+    throw;
+  }
   const auto t2 = Clock::now();
   narrowPhase(w);  // origin.md §7: manifolds with feature ids
   const auto t3 = Clock::now();
@@ -134,6 +161,15 @@ World::World(const WorldDef& def) : impl_(std::make_unique<WorldImpl>()) {
   setContactMargin(def.contact_margin);
   setSleeping(def.sleeping);
   setContinuous(def.continuous);
+  if (def.pair_cap < 1) throw InputError("pair_cap", "pair_cap must be at least 1, got 0");
+  if (def.pair_cap_per_body < 1)
+    throw InputError("pair_cap_per_body", "pair_cap_per_body must be at least 1, got " + std::to_string(def.pair_cap_per_body));
+  if (def.pair_cap_max < def.pair_cap)
+    throw InputError("pair_cap_max", "pair_cap_max must be at least pair_cap (" + std::to_string(def.pair_cap) + "), got " +
+                                         std::to_string(def.pair_cap_max));
+  impl_->def.pair_cap = def.pair_cap;
+  impl_->def.pair_cap_per_body = def.pair_cap_per_body;
+  impl_->def.pair_cap_max = def.pair_cap_max;
   impl_->def.sleep_linear_speed = requireNonNegative("sleep_linear_speed", def.sleep_linear_speed);
   impl_->def.sleep_angular_speed = requireNonNegative("sleep_angular_speed", def.sleep_angular_speed);
   impl_->def.time_to_sleep = requireNonNegative("time_to_sleep", def.time_to_sleep);
@@ -261,6 +297,7 @@ std::optional<PositionCorrection> parsePositionCorrection(std::string_view name)
 // ---------------------------------------------------------------------------------------------
 // Queries
 
+bool World::isStepping() const { return impl_->locked; }
 double World::time() const { return impl_->clock.t; }
 long World::stepCount() const { return impl_->step_count; }
 const StepStats& World::stats() const { return impl_->stats; }

@@ -10,18 +10,20 @@
 
 namespace rigidlab::lua {
 
+struct LuaDraw;
+
 struct Scene::Impl {
-  // Declaration order is destruction order reversed: the Lua references and the world (whose Lua
-  // forces hold references) go before the Lua state they point into.
+  ~Impl();  // closes in order (scene_loader.cpp): the world, the Lua references, the state
   std::unique_ptr<ScriptHost> host;
-  std::unique_ptr<World> world;
+  std::unique_ptr<World> world;  // null while the scene closes: handles then refuse to work
   SceneSettings settings;
   std::filesystem::path file;
   std::string name;  // what messages show as the file name
-  sol::protected_function on_step, check, on_key, on_draw, exact;
+  sol::object on_step, check, on_key, on_draw, exact;  // the hook functions, or nil
   sol::table handles;       // body uid → its Lua handle, so the same body is always the same object
   sol::object world_handle; // the `world` passed to hooks
   sol::object draw_handle;  // the `draw` passed to OnDraw
+  LuaDraw* draw = nullptr;  // draw_handle's object
 };
 
 // A body as Lua sees it (`world:add_box{}` returns one). Stale after world:remove(body).
@@ -42,9 +44,11 @@ struct LuaWorld {
   Scene::Impl* scene;
 };
 
-// The `draw` argument of OnDraw; usable only during that call.
+// The `draw` argument of OnDraw; usable only during that call, which it counts (Scene::DrawReport).
 struct LuaDraw {
   OverlayDraw* target = nullptr;
+  Scene::DrawReport report;
+  size_t text_bytes = 0;
 };
 
 void registerBodyType(sol::state& lua);
@@ -58,6 +62,15 @@ BodyId liveBody(lua_State* L, const LuaBody& body, std::string_view function);
 // The body named by option `key`, which must hold a body handle of this scene.
 BodyId bodyOption(lua_State* L, Scene::Impl& scene, std::string_view function, std::string_view key,
                   const sol::object& value);
+
+// The scene's world; fails "<function>: the scene is closed" while it closes.
+World& liveWorld(lua_State* L, Scene::Impl& scene, std::string_view function);
+// Fails "<function>: not allowed while the world is stepping (from inside a force)" during a step:
+// the API's edits are refused then (World::isStepping).
+void requireIdle(lua_State* L, Scene::Impl& scene, std::string_view function);
+// Host memory a body takes (its record, per-body working arrays, shape and name), charged against
+// the scene's memory limit while it exists (ScriptHost::charge).
+size_t hostBytes(const World& world, const Body& body);
 
 bool isVec2Table(lua_State* L, int index);
 // "body 'ball' (id 3)", "a spring", ... for messages.

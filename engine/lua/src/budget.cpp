@@ -2,6 +2,8 @@
 // Design and reasons in budget.h.
 #include "budget.h"
 
+#include "script_host.h"
+
 #include <lua.hpp>
 #include <signal.h>
 
@@ -186,16 +188,9 @@ std::string Budget::message() const {
 }
 
 std::string Budget::locatedMessage(lua_State* L) const {
-  // The location of the scene's code that is running: the innermost Lua frame that is not one of
-  // the host's own chunks (the prelude's pcall wrapper, the sort comparator: chunk names "=...").
-  std::string text;
-  lua_Debug frame;
-  for (int level = 0; lua_getstack(L, level, &frame); ++level) {
-    if (!lua_getinfo(L, "Sl", &frame) || frame.currentline <= 0 || frame.source[0] == '=') continue;
-    text = std::string(frame.short_src) + ":" + std::to_string(frame.currentline) + ": ";
-    break;
-  }
-  return text + message();
+  // The location of the scene's code that is running, not of the host's own chunks (the prelude's
+  // pcall wrapper, the sort comparator).
+  return sceneLocation(L) + message();
 }
 
 bool Budget::expiredOn(lua_State* L) {

@@ -1,20 +1,23 @@
 #include "lua_args.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 
 #include "bindings.h"
 #include "rigidlab/error.h"
+#include "rigidlab/lua/scene_text.h"
 
 namespace rigidlab::lua {
 
 std::string where(lua_State* L, int level) {
   // The first Lua function at or above `level` that has a current line (C functions, like assert
-  // or pcall, have none).
+  // or pcall, have none) and is the scene's: the host's own chunks (named "=...", like the
+  // prelude's pcall and load wrappers) are passed over.
   lua_Debug ar;
   for (int l = level; l < level + 8 && lua_getstack(L, l, &ar); ++l) {
     lua_getinfo(L, "Sl", &ar);
-    if (ar.currentline > 0) return std::string(ar.short_src) + ":" + std::to_string(ar.currentline) + ": ";
+    if (ar.currentline > 0 && ar.source[0] != '=') return std::string(ar.short_src) + ":" + std::to_string(ar.currentline) + ": ";
   }
   return "";
 }
@@ -26,6 +29,7 @@ void fail(lua_State* L, std::string_view function, const std::string& message) {
 }
 
 std::string describe(lua_State* L, int index) {
+  index = lua_absindex(L, index);
   switch (lua_type(L, index)) {
     case LUA_TNONE:
     case LUA_TNIL: return "nil";
@@ -36,10 +40,9 @@ std::string describe(lua_State* L, int index) {
     case LUA_TSTRING: {
       size_t len = 0;
       const char* s = lua_tolstring(L, index, &len);
-      std::string text(s, std::min<size_t>(len, 40));
-      for (char& c : text)
-        if (c == '\n' || c == '\r' || c == '\t') c = ' ';
-      return "\"" + text + (len > 40 ? "...\"" : "\"");
+      std::string text = displayText(std::string_view(s, std::min<size_t>(len, 48)), 40);
+      if (const size_t cut = text.find("... ("); cut != std::string::npos) text.resize(cut);
+      return "\"" + text + (len > 40 ? "...\" (" + std::to_string(len) + " bytes)" : "\"");
     }
     case LUA_TTABLE: {
       sol::object value(L, index);
@@ -62,22 +65,32 @@ std::string describe(const sol::object& value) {
 }
 
 std::string closestName(std::string_view name, const std::vector<std::string_view>& candidates) {
-  // Levenshtein distance, small strings only.
+  // Optimal string alignment distance: Levenshtein plus swaps of two neighbouring letters.
   const auto distance = [](std::string_view a, std::string_view b) {
-    std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);
-    for (size_t j = 0; j <= b.size(); ++j) prev[j] = j;
-    for (size_t i = 1; i <= a.size(); ++i) {
-      cur[0] = i;
-      for (size_t j = 1; j <= b.size(); ++j)
-        cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      std::swap(prev, cur);
-    }
-    return prev[b.size()];
+    std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
+    for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+    for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+    for (size_t i = 1; i <= a.size(); ++i)
+      for (size_t j = 1; j <= b.size(); ++j) {
+        d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+        if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+      }
+    return d[a.size()][b.size()];
   };
+  const auto lower = [](std::string_view s) {
+    std::string l(s);
+    for (char& c : l) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return l;
+  };
+  if (name.size() < 4 || name.size() > 64) return "";
   std::string best;
-  size_t best_distance = 3;
+  size_t best_distance = SIZE_MAX;
   for (std::string_view c : candidates) {
-    const size_t d = (c.starts_with(name) || name.starts_with(c)) ? std::min<size_t>(distance(name, c), 2) : distance(name, c);
+    size_t d = distance(name, c);
+    const size_t allowed = std::max(name.size(), c.size()) / 5;
+    if (lower(name) == lower(c)) d = 0;
+    else if (c.starts_with(name)) d = std::min(d, allowed);  // a name cut short: always a candidate
+    else if (d > allowed) continue;
     if (d < best_distance) {
       best_distance = d;
       best = std::string(c);
@@ -241,14 +254,29 @@ bool Options::boolean(std::string_view key, bool fallback) const {
   return v.as<bool>();
 }
 
-std::string Options::string(std::string_view key, std::optional<std::string> fallback) const {
+std::string Options::string(std::string_view key, std::optional<std::string> fallback, size_t max_bytes) const {
   sol::object v = get(key);
   if (v.get_type() == sol::type::lua_nil) {
     if (!fallback) fail(key, "is required");
     return *fallback;
   }
   if (v.get_type() != sol::type::string) fail(key, "must be a string, got " + describe(v));
+  v.push(L_);
+  const size_t length = lua_rawlen(L_, -1);
+  lua_pop(L_, 1);
+  if (length > max_bytes)
+    fail(key, "must be at most " + std::to_string(max_bytes) + " bytes long, got " + std::to_string(length));
   return v.as<std::string>();
+}
+
+std::string boundedString(lua_State* L, int index, std::string_view function, std::string_view what, size_t max_bytes) {
+  size_t length = 0;
+  const char* s = lua_tolstring(L, index, &length);
+  const std::string subject = what.empty() ? "" : std::string(what) + " ";
+  if (!s) fail(L, function, subject + "must be a string, got " + describe(L, index));
+  if (length > max_bytes)
+    fail(L, function, subject + "must be at most " + std::to_string(max_bytes) + " bytes long, got " + std::to_string(length));
+  return std::string(s, length);
 }
 
 }  // namespace rigidlab::lua

@@ -38,11 +38,21 @@ inline bool isMissing(const sol::stack_object& v) {
   return v.get_type() == sol::type::lua_nil || v.get_type() == sol::type::none;
 }
 
+// A string argument of at most `max_bytes` bytes (the length is checked before anything is
+// copied); fails "<function>: <what> must be at most N bytes long, got M".
+std::string boundedString(lua_State* L, int index, std::string_view function, std::string_view what, size_t max_bytes);
+
 // A value as messages show it: -1, 0.5, nan, true, nil, "text", a table, a function, a body.
+// Strings are shortened to 40 bytes and their control characters escaped (scene_text.h).
 std::string describe(const sol::object& value);
 std::string describe(lua_State* L, int index);
 
-// The closest name to `name` among `candidates` (edit distance ≤ 2 or a prefix), or "".
+// The valid name `name` was probably meant to be, among `candidates`, or "" if none is close
+// enough to be a typo of it: a name of at least 4 characters that differs from a candidate only in
+// case, or by at most one edit (a letter added, dropped, changed, or two neighbours swapped) per
+// 5 characters of the longer name, or that begins the candidate. So 'widht' → 'width', 'radus' →
+// 'radius' and 'angular' → 'angular_velocity', but 'mask' suggests nothing: one letter in four
+// changed is another word ('mass'), not a slip.
 std::string closestName(std::string_view name, const std::vector<std::string_view>& candidates);
 
 // A vector from a vec2 table, {x = , y = } or {x, y}; nullopt if the value is none of these.
@@ -67,7 +77,9 @@ class Options {
   int integer(std::string_view key, int lo, int hi, std::optional<int> fallback = std::nullopt) const;
   Vec2 vec(std::string_view key, std::optional<Vec2> fallback = std::nullopt) const;  // finite
   bool boolean(std::string_view key, bool fallback) const;
-  std::string string(std::string_view key, std::optional<std::string> fallback = std::nullopt) const;
+  // At most `max_bytes` long: a longer string is refused before the host copies it.
+  std::string string(std::string_view key, std::optional<std::string> fallback = std::nullopt,
+                     size_t max_bytes = SIZE_MAX) const;
 
   // Fails with "<function>: <key> <message>".
   [[noreturn]] void fail(std::string_view key, const std::string& message) const;

@@ -13,6 +13,7 @@
 #include "bindings.h"
 #include "lua_args.h"
 #include "rigidlab/error.h"
+#include "rigidlab/lua/scene_text.h"
 
 namespace rigidlab::lua {
 namespace {
@@ -20,7 +21,7 @@ namespace {
 using api::kBodyReadable;
 using api::kBodyWritable;
 
-World& worldOf(const LuaBody& b) { return *b.scene->world; }
+World& worldOf(lua_State* L, const LuaBody& b, std::string_view function) { return liveWorld(L, *b.scene, function); }
 
 const LuaBody& selfBody(lua_State* L, const sol::stack_object& self, std::string_view function) {
   if (!self.is<LuaBody>())
@@ -46,11 +47,13 @@ Vec2 vecArg(lua_State* L, std::string_view function, std::string_view what, cons
 int applyImpulse(lua_State* L) {
   sol::stack_object self(L, 1), j(L, 2), p(L, 3);
   const LuaBody& b = selfBody(L, self, "apply_impulse");
+  requireIdle(L, *b.scene, "apply_impulse");
   const BodyId id = liveBody(L, b, "apply_impulse");
+  World& w = worldOf(L, b, "apply_impulse");
   const Vec2 impulse = vecArg(L, "apply_impulse", "impulse", j);
-  const Vec2 point = isMissing(p) ? worldOf(b).body(id).center : vecArg(L, "apply_impulse", "point", p);
+  const Vec2 point = isMissing(p) ? w.body(id).center : vecArg(L, "apply_impulse", "point", p);
   try {
-    worldOf(b).applyImpulse(id, impulse, point);
+    w.applyImpulse(id, impulse, point);
   } catch (const InputError& e) {
     fail(L, "apply_impulse", e.what());
   }
@@ -60,8 +63,9 @@ int applyImpulse(lua_State* L) {
 int applyForce(lua_State* L) {
   sol::stack_object self(L, 1), f(L, 2), p(L, 3), d(L, 4);
   const LuaBody& b = selfBody(L, self, "apply_force");
+  requireIdle(L, *b.scene, "apply_force");
   const BodyId id = liveBody(L, b, "apply_force");
-  World& w = worldOf(b);
+  World& w = worldOf(L, b, "apply_force");
   const Vec2 force = vecArg(L, "apply_force", "force", f);
   std::optional<Vec2> local;  // a world point is attached to the body where it is now
   if (!isMissing(p)) local = w.body(id).xf.applyInverse(vecArg(L, "apply_force", "point", p));
@@ -82,7 +86,7 @@ sol::object bodyIndex(sol::this_state ts, const LuaBody& self, sol::stack_object
   lua_State* L = ts;
   if (key.get_type() != sol::type::string) fail(L, "body", "fields are named by strings, got " + describe(key));
   const std::string k = key.as<std::string>();
-  if (k == "removed") return sol::make_object(L, !worldOf(self).isValid(self.id));
+  if (k == "removed") return sol::make_object(L, !worldOf(L, self, "body.removed").isValid(self.id));
   if (k == "id") return sol::make_object(L, self.uid);
   if (k == "apply_impulse") return sol::make_object(L, guarded<applyImpulse>);
   if (k == "apply_force") return sol::make_object(L, guarded<applyForce>);
@@ -91,7 +95,7 @@ sol::object bodyIndex(sol::this_state ts, const LuaBody& self, sol::stack_object
     fail(L, "body", "has no field '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
   }
   const BodyId id = liveBody(L, self, "body." + k);
-  const Body& b = worldOf(self).body(id);
+  const Body& b = worldOf(L, self, "body." + k).body(id);
   if (k == "position") return makeVec(L, b.position());
   if (k == "angle") return sol::make_object(L, b.angle);
   if (k == "velocity") return makeVec(L, b.velocity);
@@ -104,7 +108,7 @@ sol::object bodyIndex(sol::this_state ts, const LuaBody& self, sol::stack_object
   if (k == "awake") return sol::make_object(L, !b.isStatic() && b.awake);
   if (k == "name") return sol::make_object(L, b.name);
   if (b.shapes.empty()) return sol::make_object(L, sol::lua_nil);
-  const BodyShape& first = worldOf(self).shape(b.shapes.front());
+  const BodyShape& first = worldOf(L, self, "body." + k).shape(b.shapes.front());
   const Shape& shape = first.geometry;
   if (k == "restitution") return sol::make_object(L, first.material.restitution);
   if (k == "friction") return sol::make_object(L, first.material.friction);
@@ -131,8 +135,9 @@ void bodyNewIndex(sol::this_state ts, const LuaBody& self, sol::stack_object key
     const std::string hint = closestName(k, kBodyWritable);
     fail(L, "body", "has no field '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
   }
+  requireIdle(L, *self.scene, function);
   const BodyId id = liveBody(L, self, function);
-  World& w = worldOf(self);
+  World& w = worldOf(L, self, function);
   const Body& b = w.body(id);
   try {
     if (k == "position") {
@@ -155,7 +160,11 @@ void bodyNewIndex(sol::this_state ts, const LuaBody& self, sol::stack_object key
       if (value.as<bool>()) w.wake(id);  // bodies fall asleep on their own; a script can only wake them
     } else if (k == "name") {
       if (value.get_type() != sol::type::string) fail(L, function, "must be a string, got " + describe(value));
-      w.setName(id, value.as<std::string>());
+      std::string name = boundedString(L, value.stack_index(), function, "", kNameBytes);
+      const size_t old_size = b.name.size();
+      if (name.size() > old_size) self.scene->host->charge(L, function, name.size() - old_size);
+      self.scene->host->release(old_size - std::min(old_size, name.size()));
+      w.setName(id, std::move(name));
     } else {
       Material m = b.shapes.empty() ? Material{} : w.shape(b.shapes.front()).material;
       const double x = numberArg(L, function, "value", value);
@@ -171,10 +180,12 @@ void bodyNewIndex(sol::this_state ts, const LuaBody& self, sol::stack_object key
 }
 
 std::string bodyToString(const LuaBody& self) {
+  if (!self.scene->world) return "body (id " + std::to_string(self.uid) + ", scene closed)";
   const World& w = *self.scene->world;
   if (!w.isValid(self.id)) return "body (removed, id " + std::to_string(self.uid) + ")";
   const Body& b = w.body(self.id);
-  return "body " + (b.name.empty() ? "" : "'" + b.name + "' ") + "(id " + std::to_string(self.uid) + ")";
+  // The name as messages show it: escaped and shortened (scene_text.h).
+  return "body " + (b.name.empty() ? "" : "'" + displayText(b.name, 40) + "' ") + "(id " + std::to_string(self.uid) + ")";
 }
 
 }  // namespace
@@ -198,7 +209,7 @@ sol::object bodyHandle(lua_State* L, Scene::Impl& scene, BodyId id) {
 }
 
 BodyId liveBody(lua_State* L, const LuaBody& body, std::string_view function) {
-  if (!body.scene->world->isValid(body.id))
+  if (!liveWorld(L, *body.scene, function).isValid(body.id))
     fail(L, function, "body (id " + std::to_string(body.uid) + ") was removed from the world");
   return body.id;
 }

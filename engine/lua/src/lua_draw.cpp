@@ -1,19 +1,34 @@
 // The `draw` object of OnDraw(draw): overlays in world coordinates, drawn by the sandbox.
 //   draw:line(a, b [, color])   draw:circle(center, radius [, color])   draw:text(position, text [, color])
 // color: {r, g, b [, a]} with components in 0..1; default white.
+#include <algorithm>
+
 #include "bindings.h"
 #include "lua_args.h"
 #include "rigidlab/error.h"
+#include "rigidlab/lua/scene_text.h"
 
 namespace rigidlab::lua {
 namespace {
 
-OverlayDraw& target(lua_State* L, std::string_view function) {
-  sol::stack_object self(L, 1);
-  if (!self.is<LuaDraw>()) fail(L, function, "call it as draw:" + std::string(function) + "(...), with a colon");
-  OverlayDraw* t = self.as<const LuaDraw&>().target;
-  if (!t) fail(L, function, "the draw object can only be used during OnDraw");
-  return *t;
+LuaDraw& self(lua_State* L, std::string_view function) {
+  sol::stack_object v(L, 1);
+  if (!v.is<LuaDraw>()) fail(L, function, "call it as draw:" + std::string(function) + "(...), with a colon");
+  LuaDraw& d = v.as<LuaDraw&>();
+  if (!d.target) fail(L, function, "the draw object can only be used during OnDraw");
+  return d;
+}
+
+// Counts a call against the frame's allowance (Scene::DrawReport): false once `count` has reached
+// `max`, and the report says the output was truncated. The arguments are still checked, so a
+// mistake is found whatever the allowance.
+bool allowed(LuaDraw& d, int& count, int max) {
+  if (count >= max) {
+    d.report.truncated = true;
+    return false;
+  }
+  ++count;
+  return true;
 }
 
 Vec2 point(lua_State* L, std::string_view function, std::string_view what, int index) {
@@ -30,7 +45,9 @@ Color color(lua_State* L, std::string_view function, int index) {
   float c[4] = {1, 1, 1, 1};
   if (ok) {
     sol::table t = v.as<sol::table>();
-    const size_t n = t.size();
+    v.push(L);
+    const size_t n = lua_rawlen(L, -1);  // raw: a __len of the script's must not run in the host
+    lua_pop(L, 1);
     ok = n == 3 || n == 4;
     for (size_t i = 1; ok && i <= n; ++i) {
       const sol::object x = t.raw_get<sol::object>(i);
@@ -43,28 +60,40 @@ Color color(lua_State* L, std::string_view function, int index) {
 }
 
 int line(lua_State* L) {
-  OverlayDraw& t = target(L, "line");
-  t.line(point(L, "line", "a", 2), point(L, "line", "b", 3), color(L, "line", 4));
+  LuaDraw& d = self(L, "line");
+  const Vec2 a = point(L, "line", "a", 2), b = point(L, "line", "b", 3);
+  const Color c = color(L, "line", 4);
+  if (allowed(d, d.report.lines, Scene::kMaxDrawLines)) d.target->line(a, b, c);
   return 0;
 }
 
 int circle(lua_State* L) {
-  OverlayDraw& t = target(L, "circle");
+  LuaDraw& d = self(L, "circle");
   const Vec2 c = point(L, "circle", "center", 2);
   sol::stack_object r(L, 3);
   if (r.get_type() != sol::type::number || !(r.as<double>() > 0) || !std::isfinite(r.as<double>()))
     fail(L, "circle", "radius must be a number > 0, got " + describe(r));
-  t.circle(c, r.as<double>(), color(L, "circle", 4));
+  const Color k = color(L, "circle", 4);
+  if (allowed(d, d.report.circles, Scene::kMaxDrawCircles)) d.target->circle(c, r.as<double>(), k);
   return 0;
 }
 
 int text(lua_State* L) {
-  OverlayDraw& t = target(L, "text");
+  LuaDraw& d = self(L, "text");
   const Vec2 p = point(L, "text", "position", 2);
-  sol::stack_object s(L, 3);
-  if (s.get_type() != sol::type::string && s.get_type() != sol::type::number)
-    fail(L, "text", "text must be a string, got " + describe(s));
-  t.text(p, s.as<std::string>(), color(L, "text", 4));
+  const int type = lua_type(L, 3);
+  if (type != LUA_TSTRING && type != LUA_TNUMBER) fail(L, "text", "text must be a string, got " + describe(L, 3));
+  const Color c = color(L, "text", 4);
+  if (!allowed(d, d.report.texts, Scene::kMaxDrawTexts)) return 0;
+  size_t length = 0;
+  const char* s = lua_tolstring(L, 3, &length);
+  // Only what is drawn is copied: kDrawTextBytes per text, kMaxDrawTextBytes per frame.
+  const size_t room = Scene::kMaxDrawTextBytes - std::min(d.text_bytes, Scene::kMaxDrawTextBytes);
+  const size_t taken = std::min({length, kDrawTextBytes, room});
+  if (taken < length) d.report.truncated = true;
+  if (taken == 0) return 0;
+  d.text_bytes += taken;
+  d.target->text(p, displayText(std::string_view(s, taken), kDrawTextBytes + 3, "\n"), c);
   return 0;
 }
 

@@ -104,8 +104,26 @@ _ENV.vec2 = vec2
 -- originals (they live only in these upvalues).
 
 local raw_load, raw_setmetatable, raw_collectgarbage = load, _ENV.setmetatable, collectgarbage
-local raw_pcall, raw_xpcall, source_limit = pcall, xpcall, host.source_limit
+local raw_pcall, raw_xpcall, raw_rawset, source_limit = pcall, xpcall, rawset, host.source_limit
 local budget_check, budget_expired = host.budget_check, host.budget_expired
+local record_scene_line, release_globals = host.record_scene_line, host.release_globals
+local globals = _ENV
+
+-- A reader function's pieces, counted: past source_limit bytes in all, the reader fails (and so
+-- does load, which returns nil and the message), so the parser never gets more than a string chunk.
+local function capped_reader(reader)
+  local total = 0
+  return function()
+    local piece = reader()
+    if type(piece) == "string" then
+      total = total + #piece
+      if total > source_limit then
+        error(string.format("load: the reader function returned more than %d bytes in all", source_limit), 0)
+      end
+    end
+    return piece
+  end
+end
 
 function load(chunk, chunkname, mode, env)
   if mode ~= nil and mode ~= "t" then
@@ -115,6 +133,7 @@ function load(chunk, chunkname, mode, env)
   if type(chunk) == "string" and #chunk > source_limit then
     error(string.format("load: chunk is %d bytes, larger than the limit of %d", #chunk, source_limit), 2)
   end
+  if type(chunk) == "function" then chunk = capped_reader(chunk) end
   if env == nil then return raw_load(chunk, chunkname, "t") end
   return raw_load(chunk, chunkname, "t", env)
 end
@@ -123,7 +142,14 @@ function _ENV.setmetatable(t, mt)
   if type(mt) == "table" and rawget(mt, "__gc") ~= nil then
     error("setmetatable: __gc metamethods are not allowed in scenes", 2)
   end
+  if rawequal(t, globals) then release_globals() end  -- the host's watcher of `scene` steps aside
   return raw_setmetatable(t, mt)
+end
+
+-- rawset(_G, "scene", {...}) bypasses the host's watcher of `scene` (scene_line.h): note its line.
+function rawset(t, k, v)
+  if rawequal(t, globals) and k == "scene" then record_scene_line() end
+  return raw_rawset(t, k, v)
 end
 
 function collectgarbage(opt, ...)

@@ -1,5 +1,6 @@
 // Loading a scene and running its hooks (origin.md §3 and §11: PopulateWorld builds the model).
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -8,23 +9,13 @@
 #include "bindings.h"
 #include "lua_args.h"
 #include "rigidlab/error.h"
+#include "rigidlab/lua/scene_text.h"
+#include "scene_line.h"
 
 namespace rigidlab::lua {
 namespace {
 
 using api::kSceneOptions;
-
-// Records the line where the main chunk assigns the global `scene`, so errors in the settings
-// table can point at it: a temporary __newindex on the globals, removed after the chunk ran.
-int recordSceneLine(lua_State* L) {
-  if (lua_type(L, 2) == LUA_TSTRING && std::string_view(lua_tostring(L, 2)) == "scene") {
-    const std::string at = where(L, 1);
-    lua_pushlstring(L, at.data(), at.size());
-    lua_setfield(L, LUA_REGISTRYINDEX, "rigidlab.scene_line");
-  }
-  lua_rawset(L, 1);
-  return 0;
-}
 
 // Lua reports a multi-line `scene = { ... }` assignment at its closing line; point at the line
 // that starts the statement instead ("<file>:<line>: " in, the same form out).
@@ -48,38 +39,51 @@ std::string sceneStatementLine(std::string_view source, const std::string& at) {
   return at;
 }
 
-// Reads the optional global `scene` table. Errors read "<file>:<line>: scene: dt must be > 0, got 0".
+// Reads the optional global `scene` table (inside ScriptHost::run). Errors read
+// "<file>:<line>: scene: dt must be > 0, got 0".
 void readSettings(Scene::Impl& s, WorldDef& def, const std::string& at) {
   lua_State* L = s.host->L();
-  const sol::object table = s.host->lua().globals().raw_get<sol::object>("scene");
-  s.settings.title = std::filesystem::path(s.name).stem().string();
+  lua_pushglobaltable(L);
+  lua_pushliteral(L, "scene");
+  lua_rawget(L, -2);
+  const sol::object table = sol::stack::pop<sol::object>(L);
+  lua_pop(L, 1);
+  s.settings.title = displayText(std::filesystem::path(s.name).stem().string(), kTitleBytes);
   if (table.get_type() == sol::type::lua_nil) return;
   try {
     if (table.get_type() != sol::type::table) fail(L, "scene", "must be a table of settings, got " + describe(table));
     const Options o(L, "scene", table, kSceneOptions);
     if (o.has("memory_limit")) {
       const double cap = static_cast<double>(s.host->limits().memory_bytes >> 20);
-      s.host->lowerMemoryLimit(static_cast<size_t>(o.inRange("memory_limit", 1, cap) * double(1 << 20)));
+      const auto bytes = static_cast<size_t>(o.inRange("memory_limit", 1, cap) * double(1 << 20));
+      if (s.host->memoryUsed() > bytes) {
+        char used[32];
+        std::snprintf(used, sizeof used, "%.1f", static_cast<double>(s.host->memoryUsed()) / double(1 << 20));
+        o.fail("memory_limit", "is " + describe(o.get("memory_limit")) + " MiB, less than the " + used +
+                                   " MiB the scene already uses");
+      }
+      s.host->lowerMemoryLimit(bytes);
     }
-    s.settings.title = o.string("title", s.settings.title);
+    s.settings.title = o.string("title", s.settings.title, kTitleBytes);
     def.gravity = o.vec("gravity", def.gravity);
     s.settings.dt = o.positive("dt", s.settings.dt);
     s.settings.duration = o.nonNegative("duration", s.settings.duration);
     if (o.has("integrator")) {
       const std::string name = o.string("integrator");
       const auto integrator = parseIntegrator(name);
-      if (!integrator) o.fail("integrator", "must be one of " + integratorNames() + ", got \"" + name + "\"");
+      if (!integrator) o.fail("integrator", "must be one of " + integratorNames() + ", got " + describe(o.get("integrator")));
       def.integrator = *integrator;
     }
     if (o.has("solver")) {
       const std::string name = o.string("solver");
       const auto solver = parseContactSolver(name);
-      if (!solver) o.fail("solver", "must be one of " + contactSolverNames() + ", got \"" + name + "\"");
+      if (!solver) o.fail("solver", "must be one of " + contactSolverNames() + ", got " + describe(o.get("solver")));
       def.contact_solver = *solver;
     }
     def.iterations = o.integer("iterations", 1, 10000, def.iterations);
     def.substeps = o.integer("substeps", 1, 64, def.substeps);
     def.sleeping = o.boolean("sleeping", def.sleeping);
+    s.settings.expect_incidents = o.boolean("expect_incidents", false);
     if (o.has("camera")) {
       const Options c(L, "scene.camera", o.get("camera"), {"center", "height"});
       if (c.has("center")) s.settings.camera_center = c.vec("center");
@@ -90,27 +94,55 @@ void readSettings(Scene::Impl& s, WorldDef& def, const std::string& at) {
   }
 }
 
-sol::protected_function hook(Scene::Impl& s, const char* name) {
-  const sol::object f = s.host->lua().globals().raw_get<sol::object>(name);
-  if (f.get_type() == sol::type::lua_nil) return {};
-  if (f.get_type() != sol::type::function)
+// The global function `name` (read raw, inside ScriptHost::run), or nil.
+sol::object hook(Scene::Impl& s, const char* name) {
+  lua_State* L = s.host->L();
+  lua_pushglobaltable(L);
+  lua_pushstring(L, name);
+  lua_rawget(L, -2);
+  sol::object f = sol::stack::pop<sol::object>(L);
+  lua_pop(L, 1);
+  if (f.get_type() != sol::type::lua_nil && f.get_type() != sol::type::function)
     throw SceneError(s.name + ": " + name + " must be a function, got " + describe(f));
-  return s.host->protect(f);
+  return f;
 }
 
-bool defined(const sol::protected_function& f) { return f.valid() && f.get_type() == sol::type::function; }
+bool defined(const sol::object& f) { return f.valid() && f.get_type() == sol::type::function; }
 
-// Runs a hook; a Lua error becomes SceneError("<file>:<line>: <hook>: <message>").
+// Runs a hook under its budget; a Lua error becomes SceneError("<file>:<line>: <hook>: <message>").
 template <typename... Args>
-void call(Scene::Impl& s, const sol::protected_function& f, std::string_view name, Args&&... args) {
+void call(Scene::Impl& s, const sol::object& f, std::string_view name, const Args&... args) {
   ++s.host->calls;
-  std::string error;
+  std::optional<std::string> error;
   {
     const Budget::Scope budget(s.host->budget(), Budget::Kind::Hook);
-    auto result = f(std::forward<Args>(args)...);
-    if (!result.valid()) error = s.host->errorText(result, name);
+    error = s.host->run([&] {
+      lua_State* L = s.host->L();
+      f.push(L);
+      (sol::stack::push(L, args), ...);
+      lua_call(L, static_cast<int>(sizeof...(Args)), 0);
+    });
+    if (error) error = s.host->errorText(std::move(*error), name);  // while the window is open (budget.h)
   }
-  if (!error.empty()) throw SceneError(error);
+  if (error) throw SceneError(*error);
+}
+
+// The steps of load() that touch the state, each inside ScriptHost::run.
+void setUp(Scene::Impl& s) {
+  sol::state& lua = s.host->lua();
+  registerBodyType(lua);
+  registerWorldType(lua);
+  registerDrawType(lua);
+  lockHostMetatables(s.host->L());
+  s.handles = lua.create_table();
+}
+
+void runMainChunk(Scene::Impl& s, std::string_view source, const std::string& name) {
+  lua_State* L = s.host->L();
+  s.host->pushChunk(source, name);
+  watchSceneLine(L);
+  lua_call(L, 0, 0);
+  unwatchSceneLine(L);
 }
 
 std::unique_ptr<Scene::Impl> load(std::string_view source, const std::string& name, const std::filesystem::path& file,
@@ -120,57 +152,52 @@ std::unique_ptr<Scene::Impl> load(std::string_view source, const std::string& na
   s->file = file;
   const std::filesystem::path dir = file.empty() ? std::filesystem::current_path() : file.parent_path();
   s->host = std::make_unique<ScriptHost>(options, dir.empty() ? std::filesystem::path(".") : dir);
-  sol::state& lua = s->host->lua();
-  registerBodyType(lua);
-  registerWorldType(lua);
-  registerDrawType(lua);
-  s->handles = lua.create_table();
+  ScriptHost& host = *s->host;
+  lua_State* L = host.L();
+  if (const auto error = host.run([&] { setUp(*s); })) throw SceneError(name + ": " + host.errorText(*error, ""));
 
-  sol::protected_function chunk = s->host->compile(source, name);
-  lua_State* L = s->host->L();
-  lua_pushglobaltable(L);
-  lua_createtable(L, 0, 1);
-  lua_pushcfunction(L, guarded<recordSceneLine>);
-  lua_setfield(L, -2, "__newindex");
-  lua_setmetatable(L, -2);
-  lua_pop(L, 1);
-  ++s->host->calls;
-  std::string chunk_error;
+  ++host.calls;
+  std::optional<std::string> chunk_error;
   {
-    const Budget::Scope budget(s->host->budget(), Budget::Kind::Hook);
-    auto ran = chunk();
-    if (!ran.valid()) chunk_error = s->host->errorText(ran, "");
+    const Budget::Scope budget(host.budget(), Budget::Kind::Hook);
+    chunk_error = host.run([&] { runMainChunk(*s, source, name); });
+    if (chunk_error) chunk_error = host.errorText(std::move(*chunk_error), "");
   }
-  lua_pushglobaltable(L);
-  lua_pushnil(L);
-  lua_setmetatable(L, -2);
-  lua_pop(L, 1);
-  if (!chunk_error.empty()) {
-    if (!chunk_error.starts_with(name)) chunk_error = name + ": " + chunk_error;
-    throw SceneError(chunk_error);
+  if (chunk_error) {
+    if (!chunk_error->starts_with(name)) chunk_error = name + ": " + *chunk_error;
+    throw SceneError(*chunk_error);
   }
-  lua_getfield(L, LUA_REGISTRYINDEX, "rigidlab.scene_line");
-  const std::string scene_line = sceneStatementLine(source, lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "");
-  lua_pop(L, 1);
 
   WorldDef def;
-  readSettings(*s, def, scene_line);
-  try {
-    s->world = std::make_unique<World>(def);
-  } catch (const InputError& e) {
-    throw SceneError(name + ": scene: " + e.what());
+  std::string scene_line;
+  if (auto error = host.run([&] {
+        scene_line = sceneStatementLine(source, sceneLine(L));
+        readSettings(*s, def, scene_line);
+      })) {
+    // An error of the host's own reading (out of memory) has no line of the scene's: the table's.
+    if (!hasLocation(*error)) *error = (scene_line.empty() ? name + ": " : scene_line) + "scene: " + *error;
+    throw SceneError(host.errorText(*error, ""));
   }
-  s->world_handle = sol::make_object(s->host->L(), LuaWorld{s.get()});
-  s->draw_handle = sol::make_object(s->host->L(), LuaDraw{});
-
-  const sol::protected_function populate = hook(*s, "PopulateWorld");
+  sol::object populate;
+  const auto error = host.run([&] {
+    try {
+      s->world = std::make_unique<World>(def);
+    } catch (const InputError& e) {
+      throw SceneError(name + ": scene: " + e.what());
+    }
+    s->world_handle = sol::make_object(L, LuaWorld{s.get()});
+    s->draw_handle = sol::make_object(L, LuaDraw{});
+    s->draw = &s->draw_handle.as<LuaDraw&>();
+    populate = hook(*s, "PopulateWorld");
+    s->on_step = hook(*s, "OnStep");
+    s->check = hook(*s, "Check");
+    s->on_key = hook(*s, "OnKey");
+    s->on_draw = hook(*s, "OnDraw");
+    s->exact = hook(*s, "Exact");
+  });
+  if (error) throw SceneError(name + ": " + host.errorText(*error, ""));
   if (!defined(populate))
     throw SceneError(name + ": PopulateWorld is not defined (a scene must define function PopulateWorld(world))");
-  s->on_step = hook(*s, "OnStep");
-  s->check = hook(*s, "Check");
-  s->on_key = hook(*s, "OnKey");
-  s->on_draw = hook(*s, "OnDraw");
-  s->exact = hook(*s, "Exact");
   call(*s, populate, "PopulateWorld", s->world_handle);
   return s;
 }
@@ -206,6 +233,19 @@ std::unique_ptr<Scene> Scene::loadString(std::string_view source, const std::str
     throw SceneError(name + ": source is " + std::to_string(source.size()) + " bytes, larger than the limit of " +
                      std::to_string(options.limits.source_bytes));
   return std::unique_ptr<Scene>(new Scene(load(source, name, {}, options)));
+}
+
+Scene::Impl::~Impl() {
+  // The world first (its Lua forces release their references), then the host's other references,
+  // then the state. From here on a handle sees no world and refuses to work ("the scene is
+  // closed") instead of touching a destroyed one, whatever Lua code might run while the state
+  // closes.
+  world.reset();
+  on_step = check = on_key = on_draw = exact = sol::object();
+  handles = sol::table();
+  world_handle = draw_handle = sol::object();
+  draw = nullptr;
+  host.reset();
 }
 
 Scene::Scene(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -251,9 +291,10 @@ void Scene::onKey(const std::string& key) {
   if (hasOnKey()) call(*impl_, impl_->on_key, "OnKey", impl_->world_handle, key);
 }
 bool Scene::hasOnDraw() const { return defined(impl_->on_draw); }
-void Scene::onDraw(OverlayDraw& draw) {
-  if (!hasOnDraw()) return;
-  LuaDraw& d = impl_->draw_handle.as<LuaDraw&>();
+Scene::DrawReport Scene::onDraw(OverlayDraw& draw) {
+  LuaDraw& d = *impl_->draw;
+  d = LuaDraw{};
+  if (!hasOnDraw()) return {};
   d.target = &draw;
   try {
     call(*impl_, impl_->on_draw, "OnDraw", impl_->draw_handle);
@@ -262,42 +303,34 @@ void Scene::onDraw(OverlayDraw& draw) {
     throw;
   }
   d.target = nullptr;
+  return d.report;
 }
 
 bool Scene::hasExact() const { return defined(impl_->exact); }
 
-std::vector<Scene::ExactState> Scene::exact(double t) {
-  std::vector<ExactState> states;
-  if (!hasExact()) return states;
-  Impl& s = *impl_;
-  ++s.host->calls;
-  const Budget::Scope budget(s.host->budget(), Budget::Kind::Hook);
-  auto result = s.exact(t);
-  if (!result.valid()) throw SceneError(s.host->errorText(result, "Exact"));
+namespace {
+
+// Exact(t)'s answer, read raw (inside ScriptHost::run): the table at the top of the stack.
+std::vector<Scene::ExactState> readExact(Scene::Impl& s) {
   lua_State* L = s.host->L();
-  const sol::object answer = result;
+  std::vector<Scene::ExactState> states;
+  const sol::object answer(L, -1);
   const auto bad = [&](const std::string& what) { throw SceneError(s.name + ": Exact: " + what); };
   if (answer.get_type() != sol::type::table) bad("must return a table {body name = {position = {x, y}, ...}}, got " + describe(answer));
-  answer.push(L);
+  const int table = lua_gettop(L);
   lua_pushnil(L);
-  while (lua_next(L, -2) != 0) {
+  while (lua_next(L, table) != 0) {
     sol::stack_object key(L, -2), value(L, -1);
     std::optional<BodyId> id;
     if (key.get_type() == sol::type::string) {
-      id = s.world->findBody(std::string_view(key.as<std::string>()));
-      if (!id) {
-        const std::string name = key.as<std::string>();
-        lua_pop(L, 3);
-        bad("no body is named \"" + name + "\"");
-      }
+      id = s.world->findBody(std::string_view(lua_tostring(L, -2)));
+      if (!id) bad("no body is named " + describe(L, -2));
     } else if (key.is<LuaBody>() && s.world->isValid(key.as<const LuaBody&>().id)) {
       id = key.as<const LuaBody&>().id;
     } else {
-      const std::string k = describe(key);
-      lua_pop(L, 3);
-      bad("keys must be body names or bodies, got " + k);
+      bad("keys must be body names or bodies, got " + describe(key));
     }
-    ExactState e;
+    Scene::ExactState e;
     e.uid = s.world->body(*id).uid;
     try {
       const Options o(L, "Exact", sol::object(value), {"position", "velocity", "angle", "angular_velocity"});
@@ -306,13 +339,34 @@ std::vector<Scene::ExactState> Scene::exact(double t) {
       if (o.has("angle")) e.angle = o.number("angle");
       if (o.has("angular_velocity")) e.angular_velocity = o.number("angular_velocity");
     } catch (const ScriptError& err) {
-      lua_pop(L, 3);
       throw SceneError(s.name + ": " + err.what());
     }
     states.push_back(e);
     lua_pop(L, 1);
   }
-  lua_pop(L, 1);
+  return states;
+}
+
+}  // namespace
+
+std::vector<Scene::ExactState> Scene::exact(double t) {
+  std::vector<ExactState> states;
+  if (!hasExact()) return states;
+  Impl& s = *impl_;
+  ++s.host->calls;
+  std::optional<std::string> error;
+  {
+    const Budget::Scope budget(s.host->budget(), Budget::Kind::Hook);
+    error = s.host->run([&] {
+      lua_State* L = s.host->L();
+      s.exact.push(L);
+      lua_pushnumber(L, t);
+      lua_call(L, 1, 1);
+      states = readExact(s);
+    });
+    if (error) error = s.host->errorText(std::move(*error), "Exact");
+  }
+  if (error) throw SceneError(*error);
   std::sort(states.begin(), states.end(), [](const ExactState& a, const ExactState& b) { return a.uid < b.uid; });
   return states;
 }

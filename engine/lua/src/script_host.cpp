@@ -10,6 +10,9 @@
 #include <sstream>
 
 #include "lua_args.h"
+#include "ordered_pairs.h"
+#include "rigidlab/lua/scene_text.h"
+#include "scene_line.h"
 
 extern const char kPreludeSource[];
 
@@ -19,22 +22,48 @@ namespace {
 constexpr const char* kHostKey = "rigidlab.host";
 constexpr const char* kLoadedKey = "rigidlab.loaded";
 
-// print(...): tab-separated like Lua's own, to the host's log.
+// print(...): tab-separated like Lua's own, to the host's log; at most kPrintBytes of it, with
+// control characters other than newline and tab escaped (a scene's "\27[2J" must not reach a
+// terminal).
 int luaPrint(lua_State* L) {
   const int n = lua_gettop(L);
   std::string line;
+  size_t total = 0;
   for (int i = 1; i <= n; ++i) {
     size_t len = 0;
     const char* s = luaL_tolstring(L, i, &len);  // may call __tostring: an error unwinds cleanly
     if (i > 1) line += '\t';
-    line.append(s, len);
+    total += len + (i > 1);
+    // Only what can be shown is copied (a 100 MB argument is not).
+    if (line.size() <= kPrintBytes) line.append(s, std::min(len, kPrintBytes + 1));
     lua_pop(L, 1);
   }
-  hostOf(L).log(line);
+  std::string shown = displayText(line, kPrintBytes, "\n\t");
+  if (total > line.size() && !shown.ends_with(" more bytes)"))
+    shown += "... (" + std::to_string(total - line.size()) + " more bytes)";
+  hostOf(L).log(shown);
   return 0;
 }
 
 int luaRequire(lua_State* L) { return hostOf(L).requireModule(L); }
+
+// The real path: links resolved as far as the path exists (std::filesystem::weakly_canonical).
+std::filesystem::path resolved(const std::filesystem::path& p) {
+  std::error_code ec;
+  const auto absolute = std::filesystem::absolute(p.empty() ? std::filesystem::path(".") : p, ec);
+  auto real = std::filesystem::weakly_canonical(absolute, ec);
+  return ec ? absolute.lexically_normal() : real;
+}
+
+// True if `file` lies below `dir` (both resolved).
+bool isInside(const std::filesystem::path& file, const std::filesystem::path& dir) {
+  auto f = file.begin();
+  for (auto d = dir.begin(); d != dir.end(); ++d, ++f) {
+    if (d->empty()) continue;  // a trailing separator
+    if (f == file.end() || *f != *d) return false;
+  }
+  return f != file.end();
+}
 
 int luaDescribe(lua_State* L) {
   const std::string text = describe(L, 1);
@@ -154,6 +183,20 @@ int repGuard(lua_State* L) {
   }
   luaL_pushresultsize(&b, total);
   return 1;
+}
+
+// rigidlab.record_scene_line(): called by the prelude's rawset when the main chunk sets the
+// global `scene` with rawset, so errors in the settings still point at a line.
+int luaRecordSceneLine(lua_State* L) {
+  recordSceneLine(L, sceneLocation(L));
+  return 0;
+}
+
+// rigidlab.release_globals(): the scene replaces the metatable of _G (prelude's setmetatable):
+// the host's recorder of the `scene` line (scene_loader.cpp), locked, steps aside.
+int luaReleaseGlobals(lua_State* L) {
+  releaseGlobals(L);
+  return 0;
 }
 
 int luaBudgetCheck(lua_State* L) { return Budget::check(L); }
@@ -321,54 +364,167 @@ ScriptHost& hostOf(lua_State* L) {
   return *host;
 }
 
+void lockHostMetatables(lua_State* L) {
+  // sol2 keeps every metatable of a usertype (for values, pointers, unique pointers, const
+  // variants) in the registry under a name starting with "sol.".
+  lua_pushnil(L);
+  while (lua_next(L, LUA_REGISTRYINDEX)) {
+    if (lua_type(L, -2) == LUA_TSTRING && lua_type(L, -1) == LUA_TTABLE &&
+        std::string_view(lua_tostring(L, -2)).starts_with("sol.")) {
+      lua_pushliteral(L, "__metatable");
+      lua_pushboolean(L, 0);
+      lua_rawset(L, -3);
+    }
+    lua_pop(L, 1);
+  }
+}
+
+std::string sceneLocation(lua_State* L) {
+  lua_Debug frame;
+  for (int level = 0; lua_getstack(L, level, &frame); ++level) {
+    if (!lua_getinfo(L, "Sl", &frame) || frame.currentline <= 0 || frame.source[0] == '=') continue;
+    return std::string(frame.short_src) + ":" + std::to_string(frame.currentline) + ": ";
+  }
+  return "";
+}
+
 void* ScriptHost::allocate(void* ud, void* ptr, size_t old_size, size_t new_size) {
   auto* self = static_cast<ScriptHost*>(ud);
-  const size_t old = ptr ? old_size : 0;  // for a new block old_size encodes the object type
+  // Lua sees the memory after the header (kBlockHeader); both count against the cap.
+  char* block = ptr ? static_cast<char*>(ptr) - kBlockHeader : nullptr;
+  const size_t old = ptr ? old_size + kBlockHeader : 0;  // for a new block old_size encodes the object type
   if (new_size == 0) {
-    std::free(ptr);
+    std::free(block);
     self->used_ -= old;
     return nullptr;
   }
-  // Refusing an allocation makes Lua collect garbage, retry, then raise "not enough memory".
-  if (new_size > old && self->used_ - old + new_size > self->options_.limits.memory_bytes) return nullptr;
-  void* p = std::realloc(ptr, new_size);
-  if (p) self->used_ = self->used_ - old + new_size;
-  return p;
+  const size_t size = new_size + kBlockHeader;
+  // Refusing an allocation makes Lua collect garbage, retry, then raise "not enough memory". The
+  // scene's line that asked for it is noted each time (the last refusal is the one that raises):
+  // Lua's memory error carries no location and its message handler does not run for it.
+  if (new_size > SIZE_MAX - kBlockHeader || (size > old && self->used_ - old + size > self->options_.limits.memory_bytes)) {
+    if (self->state_) self->memory_error_at_ = sceneLocation(self->state_);
+    return nullptr;
+  }
+  char* p = static_cast<char*>(std::realloc(block, size));
+  if (!p) return nullptr;
+  if (!block) {
+    const uint64_t serial = ++self->serial_;
+    std::memcpy(p, &serial, sizeof serial);
+  }
+  self->used_ = self->used_ - old + size;
+  return p + kBlockHeader;
+}
+
+void ScriptHost::charge(lua_State* L, std::string_view function, size_t bytes) {
+  if (used_ + bytes > options_.limits.memory_bytes)
+    fail(L, function, memoryMessage() + "; bodies and their names count against it");
+  used_ += bytes;
+}
+
+std::string ScriptHost::memoryMessage() const {
+  return "not enough memory (the scene's limit is " + std::to_string(options_.limits.memory_bytes >> 20) + " MiB)";
+}
+
+namespace {
+
+struct ProtectedBody {
+  void (*invoke)(void*);
+  void* body;
+  std::exception_ptr exception;
+};
+
+// The C function run() calls under lua_pcall. A C++ exception from the body is kept and a Lua
+// error raised in its place (Lua, built as C++, would catch it with catch (...) and lose it);
+// Lua's own errors pass through to the pcall.
+int protectedBody(lua_State* L) {
+  auto* p = static_cast<ProtectedBody*>(lua_touserdata(L, 1));
+  lua_settop(L, 0);
+  bool thrown = false;
+  try {
+    p->invoke(p->body);
+  } catch (const std::exception&) {
+    p->exception = std::current_exception();
+    thrown = true;
+  }
+  if (thrown) {
+    lua_pushliteral(L, "(host exception)");
+    return lua_error(L);
+  }
+  return 0;
+}
+
+}  // namespace
+
+std::optional<std::string> ScriptHost::runErased(void (*invoke)(void*), void* body) {
+  lua_State* L = this->L();
+  const int top = lua_gettop(L);
+  memory_error_at_.clear();
+  if (!lua_checkstack(L, 3)) return memoryMessage();  // lua_checkstack itself is protected
+  ProtectedBody p{invoke, body, nullptr};
+  lua_pushcfunction(L, messageHandler);
+  lua_pushcfunction(L, protectedBody);
+  lua_pushlightuserdata(L, &p);
+  const int status = lua_pcall(L, 1, 0, top + 1);
+  std::optional<std::string> error;
+  if (status == LUA_ERRMEM) {
+    error = memory_error_at_ + memoryMessage();
+  } else if (status != LUA_OK) {
+    error = lua_type(L, -1) == LUA_TSTRING ? std::string(lua_tostring(L, -1)) : "error object is " + describe(L, -1);
+  }
+  lua_settop(L, top);
+  if (p.exception) std::rethrow_exception(p.exception);
+  return error;
 }
 
 ScriptHost::ScriptHost(const SceneOptions& options, std::filesystem::path scene_dir)
     : options_(options), scene_dir_(std::move(scene_dir)) {
   if (options_.module_dirs.empty()) options_.module_dirs.push_back(scriptsDirectory());
+  // require() reads only below these, whatever links lead elsewhere (requireModule).
+  for (const auto& dir : std::vector{scene_dir_}) allowed_dirs_.push_back(resolved(dir));
+  for (const auto& dir : options_.module_dirs) allowed_dirs_.push_back(resolved(dir));
   lua_ = std::make_unique<sol::state>(sol::default_at_panic, &ScriptHost::allocate, this);
   lua_State* L = lua_->lua_state();
-  lua_pushlightuserdata(L, this);
-  lua_setfield(L, LUA_REGISTRYINDEX, kHostKey);
-  lua_newtable(L);
-  lua_setfield(L, LUA_REGISTRYINDEX, kLoadedKey);
+  state_ = L;
+  const auto error = run([&] {
+    lua_pushlightuserdata(L, this);
+    lua_setfield(L, LUA_REGISTRYINDEX, kHostKey);
+    lua_newtable(L);
+    lua_setfield(L, LUA_REGISTRYINDEX, kLoadedKey);
 
-  // Only these libraries; never open_libraries() without arguments (it opens io, os, package...).
-  lua_->open_libraries(sol::lib::base, sol::lib::math, sol::lib::string, sol::lib::table);
-  lua_pushcfunction(L, guarded<luaPrint>);
-  lua_setglobal(L, "print");
-  lua_pushcfunction(L, guarded<luaRequire>);
-  lua_setglobal(L, "require");
-  // The string metatable cannot be read or replaced: getmetatable("") is false.
-  lua_pushliteral(L, "");
-  lua_getmetatable(L, -1);
-  lua_pushboolean(L, 0);
-  lua_setfield(L, -2, "__metatable");
-  lua_pop(L, 2);
-  // Runs repeat: the generator starts from the same seed every time (reliability.md D2).
-  (*lua_)["math"]["randomseed"](20261121);
-  installGuards();
-  runPrelude();
+    // Only these libraries; never open_libraries() without arguments (it opens io, os, package...).
+    lua_->open_libraries(sol::lib::base, sol::lib::math, sol::lib::string, sol::lib::table);
+    lua_pushcfunction(L, guarded<luaPrint>);
+    lua_setglobal(L, "print");
+    lua_pushcfunction(L, guarded<luaRequire>);
+    lua_setglobal(L, "require");
+    // The string metatable cannot be read or replaced: getmetatable("") is false.
+    lua_pushliteral(L, "");
+    lua_getmetatable(L, -1);
+    lua_pushboolean(L, 0);
+    lua_setfield(L, -2, "__metatable");
+    lua_pop(L, 2);
+    // Runs repeat: the generator starts from the same seed every time (reliability.md D2).
+    lua_getglobal(L, "math");
+    lua_getfield(L, -1, "randomseed");
+    lua_pushinteger(L, 20261121);
+    lua_call(L, 1, 0);
+    lua_pop(L, 1);
+    installGuards();
+    installOrderedPairs(L);
+    runPrelude();
+  });
+  if (error) throw SceneError("cannot set up the scene's Lua state: " + *error);
   // From here on every call into the state runs under a budget window (budget.h).
   budget_ = std::make_unique<Budget>(L, options_.limits.hook_seconds, options_.limits.force_seconds);
 }
 
 ScriptHost::~ScriptHost() {
   budget_.reset();
-  lua_.reset();  // closes the state while the allocator's counter lives
+  // Closing runs the finalizers of what is left. Lua runs finalizers with its hooks off, so no
+  // budget could stop one: the only ones that can exist are sol2's C++ destructors of handles
+  // (setmetatable refuses __gc, and the usertypes' metatables are locked: lockHostMetatables).
+  lua_.reset();  // while the allocator's counter lives
 }
 
 void ScriptHost::installGuards() {
@@ -402,21 +558,23 @@ void ScriptHost::installGuards() {
 }
 
 void ScriptHost::runPrelude() {
-  sol::state& lua = *lua_;
-  sol::protected_function prelude = compile(kPreludeSource, "=prelude");
-  sol::table api = lua.create_table();
-  lua_State* L = lua.lua_state();
-  lua_pushcfunction(L, guarded<luaDescribe>);
-  api["describe"] = sol::stack::pop<sol::object>(L);
-  lua_pushcfunction(L, guarded<luaRegisterVec2>);
-  api["register_vec2"] = sol::stack::pop<sol::object>(L);
-  lua_pushcfunction(L, luaBudgetCheck);
-  api["budget_check"] = sol::stack::pop<sol::object>(L);
-  lua_pushcfunction(L, luaBudgetExpired);
-  api["budget_expired"] = sol::stack::pop<sol::object>(L);
-  api["source_limit"] = static_cast<lua_Integer>(std::min(options_.limits.source_bytes, kLoadChunkLimit));
-  auto result = prelude(api);
-  if (!result.valid()) throw SceneError("prelude: " + errorText(result, "prelude"));
+  lua_State* L = lua_->lua_state();
+  pushChunk(kPreludeSource, "=prelude");
+  lua_createtable(L, 0, 8);
+  static const std::pair<const char*, lua_CFunction> kApi[] = {
+      {"describe", guarded<luaDescribe>},
+      {"register_vec2", guarded<luaRegisterVec2>},
+      {"budget_check", luaBudgetCheck},
+      {"budget_expired", luaBudgetExpired},
+      {"record_scene_line", guarded<luaRecordSceneLine>},
+      {"release_globals", guarded<luaReleaseGlobals>}};
+  for (const auto& [name, f] : kApi) {
+    lua_pushcfunction(L, f);
+    lua_setfield(L, -2, name);
+  }
+  lua_pushinteger(L, static_cast<lua_Integer>(std::min(options_.limits.source_bytes, kLoadChunkLimit)));
+  lua_setfield(L, -2, "source_limit");
+  lua_call(L, 1, 0);
 }
 
 std::string ScriptHost::readSource(const std::filesystem::path& file, const std::string& name) const {
@@ -433,46 +591,26 @@ std::string ScriptHost::readSource(const std::filesystem::path& file, const std:
   return text.str();
 }
 
-sol::protected_function ScriptHost::compile(std::string_view source, const std::string& name) {
+void ScriptHost::pushChunk(std::string_view source, const std::string& name) {
   lua_State* L = lua_->lua_state();
   const std::string chunkname = name.starts_with("=") ? name : "@" + name;
   // Mode "t": a precompiled (binary) chunk is refused before the parser runs (reliability.md §0.2).
   const int status = luaL_loadbufferx(L, source.data(), source.size(), chunkname.c_str(), "t");
-  if (status != LUA_OK) {
-    std::string message = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "cannot load";
-    lua_pop(L, 1);
-    if (message.find("attempt to load a binary chunk") != std::string::npos)
-      message = name + ": binary (precompiled) chunks are not allowed; load Lua source text";
-    throw SceneError(message);
-  }
-  sol::function chunk(L, -1);
+  if (status == LUA_OK) return;
+  std::string message = status == LUA_ERRMEM                ? name + ": " + memoryMessage()
+                        : lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1)
+                                                         : "cannot load";
   lua_pop(L, 1);
-  return protect(chunk);
-}
-
-sol::protected_function ScriptHost::protect(const sol::object& function) {
-  lua_State* L = lua_->lua_state();
-  lua_pushcfunction(L, messageHandler);
-  sol::reference handler = sol::stack::pop<sol::reference>(L);
-  return sol::protected_function(function, handler);
-}
-
-std::string ScriptHost::errorText(const sol::protected_function_result& result, std::string_view context) {
-  std::string message;
-  if (result.status() == sol::call_status::memory && !(budget_ && budget_->expired())) {
-    message = "not enough memory (the scene's limit is " + std::to_string(options_.limits.memory_bytes >> 20) + " MiB)";
-  } else {
-    // Read the error from the stack: sol2 refuses to convert a failed result to anything else.
-    lua_State* L = result.lua_state();
-    const int index = result.stack_index();
-    message = lua_type(L, index) == LUA_TSTRING ? lua_tostring(L, index) : "error object is " + describe(L, index);
-  }
-  return errorText(std::move(message), context);
+  if (message.find("attempt to load a binary chunk") != std::string::npos)
+    message = name + ": binary (precompiled) chunks are not allowed; load Lua source text";
+  throw SceneError(errorText(std::move(message), ""));
 }
 
 std::string ScriptHost::errorText(std::string message, std::string_view context) {
   // A spent budget explains whatever error the call ended with (the hook's, or one it caused).
   if (budget_ && budget_->expired()) message = budget_->raised().empty() ? budget_->message() : budget_->raised();
+  // Shown on terminals and in the sandbox: escaped and shortened (scene_text.h).
+  message = displayText(message, kMessageBytes, "\n\t");
   if (message == last_api_error_ || context.empty()) return message;  // already "<where><function>: ..."
   if (hasLocation(message)) {
     // Insert the context after "<file>:<line>: ".
@@ -491,17 +629,19 @@ void ScriptHost::log(const std::string& line) const {
 }
 
 int ScriptHost::requireModule(lua_State* L) {
-  const std::string name = luaL_checkstring(L, 1);
-  lua_getfield(L, LUA_REGISTRYINDEX, kLoadedKey);
-  lua_getfield(L, -1, name.c_str());
-  if (!lua_isnil(L, -1)) return 1;
-  lua_pop(L, 1);
-
-  // Module names are dotted identifiers: "forces.spring" → forces/spring.lua. No paths, no "..".
+  size_t length = 0;
+  const char* text = luaL_checklstring(L, 1, &length);
+  const std::string name(text, length);  // all of it: a name cut at a NUL would load another module
+  // Module names are dotted identifiers: "forces.spring" → forces/spring.lua. No paths, no "..",
+  // no NUL or other control characters.
   const bool valid = !name.empty() && name.find_first_not_of(
       "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_.-") == std::string::npos &&
       name.find("..") == std::string::npos && name.front() != '.';
   if (!valid) fail(L, "require", "module name must look like \"forces.spring\", got " + describe(L, 1));
+  lua_getfield(L, LUA_REGISTRYINDEX, kLoadedKey);
+  lua_getfield(L, -1, name.c_str());
+  if (!lua_isnil(L, -1)) return 1;
+  lua_pop(L, 1);
   std::string relative = name;
   for (char& c : relative)
     if (c == '.') c = '/';
@@ -509,34 +649,45 @@ int ScriptHost::requireModule(lua_State* L) {
 
   std::vector<std::filesystem::path> dirs{scene_dir_};
   dirs.insert(dirs.end(), options_.module_dirs.begin(), options_.module_dirs.end());
-  std::filesystem::path found;
+  std::filesystem::path found, real;
   std::string looked;
-  for (const auto& dir : dirs) {
-    const auto candidate = dir / relative;
+  for (size_t d = 0; d < dirs.size() && found.empty(); ++d) {
+    const auto candidate = dirs[d] / relative;
     if (std::filesystem::is_regular_file(candidate)) {
+      // The real file, links resolved, must lie inside one of the allowed folders (also resolved):
+      // a link in a mod's folder must not lead to /etc/os-release.
+      real = resolved(candidate);
+      if (!std::any_of(allowed_dirs_.begin(), allowed_dirs_.end(), [&](const auto& dir) { return isInside(real, dir); }))
+        fail(L, "require", "module '" + name + "' (" + candidate.lexically_normal().string() +
+                               ") is a link to a file outside the scene's folder and the module folders: refused");
       found = candidate;
-      break;
+    } else {
+      looked += (looked.empty() ? "" : ", ") + (dirs[d].empty() ? std::string(".") : dirs[d].string());
     }
-    looked += (looked.empty() ? "" : ", ") + (dir.empty() ? std::string(".") : dir.string());
   }
   if (found.empty()) fail(L, "require", "module '" + name + "' not found (looked for " + relative + " in " + looked + ")");
 
   const std::string display = found.lexically_normal().string();
-  sol::protected_function chunk = compile(readSource(found, display), display);
+  const std::string source = readSource(real, display);  // the file checked, not the link again
   if (std::find(required_.begin(), required_.end(), found) == required_.end()) required_.push_back(found);
   ++calls;
-  auto result = chunk(name);
-  if (!result.valid()) {
-    const std::string message = errorText(result, "require '" + name + "'");
+  lua_pushcfunction(L, messageHandler);
+  const int handler = lua_gettop(L);
+  pushChunk(source, display);
+  lua_pushlstring(L, name.data(), name.size());
+  if (const int status = lua_pcall(L, 1, 1, handler); status != LUA_OK) {
+    const std::string raised = status == LUA_ERRMEM ? memory_error_at_ + memoryMessage()
+                               : lua_type(L, -1) == LUA_TSTRING ? std::string(lua_tostring(L, -1))
+                                                                : "error object is " + describe(L, -1);
+    const std::string message = errorText(raised, "require '" + name + "'");
     markApiError(message);
     throw ScriptError(message);
   }
-  sol::object value = result;
   lua_getfield(L, LUA_REGISTRYINDEX, kLoadedKey);
-  if (value.get_type() == sol::type::lua_nil) {
+  if (lua_isnil(L, -2)) {
     lua_pushboolean(L, 1);
   } else {
-    value.push(L);
+    lua_pushvalue(L, -2);
   }
   lua_pushvalue(L, -1);
   lua_setfield(L, -3, name.c_str());

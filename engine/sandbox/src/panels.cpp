@@ -33,7 +33,7 @@ bool inputVec(const char* label, Vec2* v, const char* format = "%.6g", bool read
 
 void sceneSection(Session& s) {
   const lua::SceneSettings& settings = s.scene->settings();
-  ImGui::TextWrapped("%s", settings.title.c_str());
+  ImGui::TextWrapped("%s", overlayText(settings.title, 256).c_str());
   if (!s.file.empty()) ImGui::TextColored(kDimColor, "%s", s.file.filename().string().c_str());
   if (s.paused) ImGui::TextColored(kWarnColor, "PAUSED   t = %.3f s   step %ld", s.world().time(), s.world().stepCount());
   else ImGui::Text("running  t = %.3f s   step %ld", s.world().time(), s.world().stepCount());
@@ -434,6 +434,11 @@ void errorOverlay(Session& s) {
   } else if (!s.draw_error.empty()) {
     heading = "OnDraw failed: overlay off until the scene reloads";
     text = s.draw_error;
+  } else if (s.draw_truncated) {
+    heading = "OnDraw output truncated";
+    text = "OnDraw asked for more than a frame draws: at most " + std::to_string(lua::Scene::kMaxDrawLines) + " lines, " +
+           std::to_string(lua::Scene::kMaxDrawCircles) + " circles and " + std::to_string(lua::Scene::kMaxDrawTexts) +
+           " texts (" + std::to_string(lua::Scene::kMaxDrawTextBytes >> 10) + " KiB of text) per frame; the rest is not drawn.";
   } else {
     return;
   }

@@ -112,7 +112,7 @@ bool openWindow(Window& w, std::string& error) {
 }
 
 void updateTitle(SDL_Window* window, const Session& s, std::string& shown) {
-  const std::string title = "rigidlab - " + s.scene->settings().title + (s.paused ? " (paused)" : "");
+  const std::string title = "rigidlab - " + overlayText(s.scene->settings().title, 256) + (s.paused ? " (paused)" : "");
   if (title != shown) SDL_SetWindowTitle(window, title.c_str());
   shown = title;
 }
@@ -150,9 +150,9 @@ void drawWorld(Session& s, Renderer& renderer) {
   drawToolOverlay(s, renderer);
   if (s.scene->hasOnDraw() && s.draw_error.empty()) {
     try {
-      s.scene->onDraw(renderer);
+      s.draw_truncated = s.scene->onDraw(renderer).truncated;
     } catch (const std::exception& e) {
-      s.draw_error = e.what();
+      s.draw_error = overlayText(e.what());
       std::fprintf(stderr, "rigidlab: %s\n", s.draw_error.c_str());
     }
   }

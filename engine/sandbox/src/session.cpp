@@ -4,14 +4,19 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "rigidlab/lua/scene_text.h"
 #include "rigidlab/lua/scene_writer.h"
 
 namespace rigidlab::sandbox {
 
 namespace fs = std::filesystem;
 
+std::string overlayText(std::string_view message, size_t max_bytes) {
+  return lua::displayText(message, max_bytes, "\n");
+}
+
 void Session::setStatus(std::string message, double seconds) {
-  status = std::move(message);
+  status = overlayText(message, 512);  // one line at the bottom of the window
   status_until = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
 }
 
@@ -68,8 +73,8 @@ void startSession(Session& s, const fs::path& file) {
 
 void adoptScene(Session& s, LoadResult r) {
   if (!r.scene) {
-    s.load_error = r.error;
-    std::fprintf(stderr, "rigidlab: %s%s\n", r.purpose == LoadPurpose::Open ? "" : "reload failed: ", r.error.c_str());
+    s.load_error = overlayText(r.error);
+    std::fprintf(stderr, "rigidlab: %s%s\n", r.purpose == LoadPurpose::Open ? "" : "reload failed: ", s.load_error.c_str());
     std::fflush(stderr);
     if (!s.scene_loaded) {
       // Nothing good to keep yet: watch the file the user is fixing.
@@ -88,6 +93,7 @@ void adoptScene(Session& s, LoadResult r) {
   s.load_error.clear();
   s.run_error.clear();
   s.draw_error.clear();
+  s.draw_truncated = false;
   s.scene_values = currentValues(*s.scene);
   if (keep_view) {
     applyOverrides(s);
@@ -157,7 +163,7 @@ void afterSteps(Session& s) {
   s.exact.update(*s.scene);
   const auto& incidents = s.world().incidents();
   for (; s.incidents_seen < incidents.size(); ++s.incidents_seen) {
-    const std::string message = incidents[s.incidents_seen].message();
+    const std::string message = overlayText(incidents[s.incidents_seen].message());
     std::fprintf(stderr, "rigidlab: %s\n", message.c_str());
     s.setStatus(message, 8.0);
   }
@@ -169,7 +175,7 @@ bool guardedStep(Session& s, double dt) {
     s.scene->step(dt);
     return true;
   } catch (const std::exception& e) {
-    s.run_error = e.what();
+    s.run_error = overlayText(e.what());
   }
   std::fprintf(stderr, "rigidlab: paused: %s\n", s.run_error.c_str());
   std::fflush(stderr);
@@ -377,7 +383,7 @@ bool saveWorld(Session& s, const fs::path& path, std::string& message) {
   settings.camera_center = s.camera.center;
   settings.camera_height = s.camera.heightMetres();
   try {
-    lua::saveScene(s.world(), settings, path);
+    lua::saveScene(s.world(), settings, path, s.scene_options.limits.source_bytes);
   } catch (const std::exception& e) {
     message = e.what();
     return false;

@@ -114,9 +114,11 @@ struct Session {
   // A reload that failed while its file was being rewritten again: probably a half-written file.
   // Shown only if the writes settle without bringing a new load (then it was a real error).
   std::optional<LoadResult> deferred_failure;
+  // Messages are stored as overlayText() makes them, so they are safe and small enough to draw.
   std::string load_error;  // the last load failed: shown until the next good load
   std::string run_error;   // a script failed while running: the simulation paused
   std::string draw_error;  // OnDraw failed: it is not called again until the scene is reloaded
+  bool draw_truncated = false;  // the last OnDraw asked for more than a frame draws (Scene::DrawReport)
   std::string status;      // a transient message (saved, undone, refused edit, ...)
   Clock::time_point status_until{};
   int reloads = 0;
@@ -127,6 +129,12 @@ struct Session {
   const World& world() const { return scene->world(); }
   double dt() const { return scene->settings().dt; }
 };
+
+// A message as the sandbox shows and prints it: control characters escaped, at most
+// kOverlayBytes. Dear ImGui draws 4 vertices per character and a window's vertices must number
+// under 65 536 (16-bit indices): an error of 20 000 characters aborted it on an assertion.
+inline constexpr size_t kOverlayBytes = 4096;
+std::string overlayText(std::string_view message, size_t max_bytes = kOverlayBytes);
 
 // Loads `file` (empty: an empty world) on this thread and starts watching it. On failure the
 // session shows an empty world with the error overlay and watches the file, so fixing it loads it.

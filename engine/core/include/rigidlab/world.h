@@ -99,6 +99,18 @@ struct WorldDef {
   // velocities. Off reproduces the thesis, where held bodies creep by their gravity travel.
   bool contact_displacement = true;
   BroadPhaseKind broad_phase = BroadPhaseKind::Grid;
+  // Bound on the contact pipeline, checked inside the broad phase (broad_phase.cpp): a step stops
+  // as soon as it has found more than min(pair_cap_max, max(pair_cap, pair_cap_per_body × bodies))
+  // candidate pairs, or made 64 times that many box tests, and throws InputError saying how many
+  // bodies crowd where; the world is left as it was before the step. Memory and time of a step
+  // are then linear in the number of bodies and bounded whatever their number (a pair costs
+  // about 700 bytes through the pipeline: at most ~0.7 GB). Piles have about 3 pairs per body
+  // (pyramid of 5050 boxes: 2.96, rain of 4000 circles: 2.4), so the cap stops only bodies heaped
+  // on each other, whose pairs grow as n²/2 (3000 circles at one point: 4.5 million pairs, 3.2 GB
+  // for one step).
+  size_t pair_cap = 100000;       // ≥ 1
+  int pair_cap_per_body = 32;     // ≥ 1
+  size_t pair_cap_max = 1000000;  // ≥ pair_cap
   // Continuous collision detection of fast bodies against static ones (continuous.cpp): a body
   // that moves more than half its inner radius in a step is stopped at the first static body on
   // its way instead of tunnelling through it.
@@ -277,9 +289,11 @@ class World {
   // --- simulation
   // Advances by dt [s] > 0: integrate → find pairs → narrow phase → solve contacts → correct
   // positions → expire forces. Edits requested while a step runs (from inside a force) throw.
-  // If a force throws (e.g. a script error), the bodies are restored to their state before the
-  // step and the exception propagates: the world is as if the step had not been called.
+  // If a force throws (e.g. a script error) or the broad phase reaches its cap (WorldDef::pair_cap),
+  // the bodies are restored to their state before the step and the exception propagates: the
+  // world is as if the step had not been called.
   void step(double dt);
+  bool isStepping() const;         // true while step() runs (inside a force): edits are refused
   double time() const;             // simulated time [s]
   long stepCount() const;
   const StepStats& stats() const;  // of the last step

@@ -52,6 +52,9 @@ struct SceneSettings {
   // the middle of the window and the height of the view in metres. Unset: fit to the scene.
   std::optional<Vec2> camera_center;
   std::optional<double> camera_height;
+  // `scene.expect_incidents = true`: bodies frozen by the NaN firewall or a non-finite energy are
+  // what the scene is about (a test of the firewall), so a headless run still exits with 0.
+  bool expect_incidents = false;
 };
 
 struct SceneOptions {
@@ -104,7 +107,16 @@ class Scene {
   bool hasOnKey() const;
   void onKey(const std::string& key);  // OnKey(world, key); key names as SDL's, lower case ("space", "a")
   bool hasOnDraw() const;
-  void onDraw(OverlayDraw& draw);  // OnDraw(draw)
+  // What one OnDraw call drew. A frame draws at most kMaxDrawLines lines, kMaxDrawCircles circles
+  // and kMaxDrawTexts texts (of at most kDrawTextBytes each, kMaxDrawTextBytes in all): calls
+  // past that are dropped and `truncated` says so (the sandbox shows it).
+  struct DrawReport {
+    int lines = 0, circles = 0, texts = 0;
+    bool truncated = false;
+  };
+  static constexpr int kMaxDrawLines = 20000, kMaxDrawCircles = 2000, kMaxDrawTexts = 500;
+  static constexpr size_t kMaxDrawTextBytes = 64 << 10;
+  DrawReport onDraw(OverlayDraw& draw);  // OnDraw(draw)
 
   // Exact(t): a scene that knows its closed-form solution returns, for time t, a table keyed by
   // body name (or body handle) of states {position = {x, y} [, velocity = {x, y}] [, angle = a]

@@ -19,8 +19,11 @@ namespace rigidlab::lua {
 std::string sceneSource(const World& world, const SceneSettings& settings);
 
 // Writes sceneSource() to `path` atomically. Throws SceneError("<path>: <reason>") on failure,
-// leaving any existing file untouched and no temporary file behind.
-void saveScene(const World& world, const SceneSettings& settings, const std::filesystem::path& path);
+// leaving any existing file untouched and no temporary file behind. A text longer than
+// `max_bytes` (the largest scene file the loader reads, ScriptLimits::source_bytes) is refused
+// before anything is written: rigidlab must open what it saves.
+void saveScene(const World& world, const SceneSettings& settings, const std::filesystem::path& path,
+               size_t max_bytes = ScriptLimits{}.source_bytes);
 
 // Temporary files a killed save may have left next to `path`'s directory entries ("*.rigidlab-tmp-*");
 // removes them. The sandbox calls it at start; the file watcher ignores such names.
