@@ -193,7 +193,9 @@ void findPairs(WorldImpl& w) {
     view.placed.shape = &shape;
     view.placed.xf = &b.xf;
     view.body = s.body.index;
-    view.special = s.sensor || !s.default_filter;
+    // A body with joints may be kept from colliding with its jointed partners (collide_connected).
+    const bool jointed = s.body.index < w.body_joints.size() && !w.body_joints[s.body.index].empty();
+    view.special = s.sensor || !s.default_filter || jointed;
     // Inflated by half the contact margin each, so pairs within the margin are found.
     const Vec2 half_margin = Vec2::Constant(0.5 * w.def.contact_margin);
     p.aabb.lower -= half_margin;

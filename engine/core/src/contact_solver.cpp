@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "joint_solver.h"
 #include "stages.h"
 #include "world_impl.h"
 
@@ -29,6 +30,8 @@ namespace {
 inline Vec2 relativeVelocity(const Body& a, const Body& b, const ContactPoint& cp) {
   return b.velocity + cross(b.angular_velocity, cp.rb) - a.velocity - cross(a.angular_velocity, cp.ra);
 }
+
+}  // namespace
 
 // κ: the weight an integrator's position update gives to the velocity gained during the step:
 // 1 for semi-implicit and implicit Euler (c += h v_{n+1}), ½ for RK4 (c += h v_n + ½ h² a, exact for a constant
@@ -42,6 +45,8 @@ double restingWeight(Integrator integrator) {
   }
   return 0.0;
 }
+
+namespace {
 
 void prepare(WorldImpl& w, Contact& c, SolverPrepared& out) {
   const double resting_weight = restingWeight(w.def.integrator);
@@ -218,37 +223,98 @@ inline void solve(std::vector<SolverBody>& bodies, SolverContact& c) {
 // configured count. Large islands (piles, pyramids) use the configured count only. Islands are
 // independent, so the extra passes on one do not change another.
 constexpr int kSmallIsland = 64;
+// What a joint weighs in the choice of solver and the size of an island, in contact points: its
+// rows, at most three. An island that sequential impulses take has fewer than soft_step_points
+// (256) points, so at most 85 joints and kMaxDirectRows rows for their direct solve.
+constexpr uint32_t kJointPoints = 3;
 constexpr int kMoreIterations = 50;
+
+SoftBody viewOf(const SolverBody& s) { return {s.vx, s.vy, s.w, 0.0, 0.0, 1.0, 0.0, s.im, s.ii}; }
+void storeView(SolverBody& s, const SoftBody& v) {
+  if (s.im == 0.0 && s.ii == 0.0) return;  // immovable: unchanged (kinematic velocities too)
+  s.vx = v.vx;
+  s.vy = v.vy;
+  s.w = v.w;
+}
+
+// One joint on the solver's velocities: its warm start, or a pass without position bias.
+void solveJointVelocity(std::vector<SolverBody>& bodies, Joint& j, const JointStep& step, bool warm_start) {
+  JointViews<SolverBody> v(bodies, j, viewOf);
+  if (warm_start) {
+    warmStartJoint(j, v.bodies);
+  } else {
+    solveJoint(j, v.bodies, step, false);
+  }
+  v.writeBack(bodies, storeView);
+}
 
 uint32_t findRoot(std::vector<uint32_t>& parent, uint32_t i) {
   while (parent[i] != i) i = parent[i] = parent[parent[i]];
   return i;
 }
 
-void convergeSmallIslands(WorldImpl& w, std::vector<SolverBody>& bodies, std::vector<SolverContact>& constraints) {
-  if (constraints.empty()) return;
+// The sum of a joint's accumulated impulses' sizes, to see whether more passes change them.
+double impulseSize(const JointImpulses& p) {
+  return std::abs(p.linear_x) + std::abs(p.linear_y) + std::abs(p.angular) + std::abs(p.perpendicular) +
+         std::abs(p.axial) + std::abs(p.spring) + std::abs(p.motor) + std::abs(p.lower) + std::abs(p.upper) +
+         std::abs(p.spring_x) + std::abs(p.spring_y);
+}
+
+void convergeSmallIslands(WorldImpl& w, std::vector<SolverBody>& bodies, std::vector<SolverContact>& constraints,
+                          const JointStep& step) {
+  const auto& joints = w.si_joints;
+  if (constraints.empty() && joints.empty()) return;
   auto& parent = w.island_parent;  // scratch, also used by sleep.cpp at the end of the step
   parent.resize(w.bodies.size());
   for (uint32_t i = 0; i < parent.size(); ++i) parent[i] = i;
+  const auto moves = [&](uint32_t slot) { return slot != kWorldSlot && (bodies[slot].im > 0.0 || bodies[slot].ii > 0.0); };
+  const auto unite = [&](uint32_t a, uint32_t b) {
+    parent[std::max(findRoot(parent, a), findRoot(parent, b))] = std::min(findRoot(parent, a), findRoot(parent, b));
+  };
   for (const SolverContact& c : constraints)
-    if (bodies[c.a].im > 0.0 && bodies[c.b].im > 0.0) parent[std::max(findRoot(parent, c.a), findRoot(parent, c.b))] =
-                                                          std::min(findRoot(parent, c.a), findRoot(parent, c.b));
-  // Constraint indices grouped by island (stable: each island keeps the solver's order).
+    if (bodies[c.a].im > 0.0 && bodies[c.b].im > 0.0) unite(c.a, c.b);
+  for (uint32_t k : joints) {
+    const Joint& j = w.joints[k];
+    uint32_t first = kWorldSlot;
+    for (uint32_t s : {j.a, j.b, j.c, j.d})
+      if (moves(s)) first == kWorldSlot ? void(first = s) : unite(first, s);
+  }
+  // Constraint indices grouped by island (stable: each island keeps the solver's order). Joints
+  // are the entries past the contacts.
+  const uint32_t nc = static_cast<uint32_t>(constraints.size());
   auto& order = w.island_order;
-  order.resize(constraints.size());
-  const auto islandOf = [&](const SolverContact& c) { return findRoot(parent, bodies[c.a].im > 0.0 ? c.a : c.b); };
+  order.resize(nc + joints.size());
+  const auto islandOf = [&](uint32_t x) {
+    if (x < nc) return findRoot(parent, bodies[constraints[x].a].im > 0.0 ? constraints[x].a : constraints[x].b);
+    const Joint& j = w.joints[joints[x - nc]];
+    for (uint32_t s : {j.a, j.b, j.c, j.d})
+      if (moves(s)) return findRoot(parent, s);
+    return uint32_t{0};
+  };
   for (uint32_t k = 0; k < order.size(); ++k) order[k] = k;
-  std::stable_sort(order.begin(), order.end(),
-                   [&](uint32_t x, uint32_t y) { return islandOf(constraints[x]) < islandOf(constraints[y]); });
+  std::stable_sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) { return islandOf(x) < islandOf(y); });
   for (size_t start = 0; start < order.size();) {
-    const uint32_t island = islandOf(constraints[order[start]]);
+    const uint32_t island = islandOf(order[start]);
     size_t end = start;
-    int points = 0;
-    while (end < order.size() && islandOf(constraints[order[end]]) == island) points += constraints[order[end++]].count;
-    if (points <= kSmallIsland) {
+    uint32_t points = 0;
+    while (end < order.size() && islandOf(order[end]) == island) {
+      points += order[end] < nc ? static_cast<uint32_t>(constraints[order[end]].count) : kJointPoints;
+      ++end;
+    }
+    if (points <= static_cast<uint32_t>(kSmallIsland)) {
       for (int it = w.def.iterations; it < kMoreIterations * w.def.iterations; ++it) {
         double change = 0.0, size = 0.0;
+        for (size_t k = start; k < end; ++k) {  // the joints first, as in the passes above
+          if (order[k] < nc) continue;
+          Joint& j = w.joints[joints[order[k] - nc]];
+          const double p0 = impulseSize(j.impulses);
+          solveJointVelocity(bodies, j, step, false);
+          const double p1 = impulseSize(j.impulses);
+          change = std::max(change, std::abs(p1 - p0));
+          size = std::max(size, p1);
+        }
         for (size_t k = start; k < end; ++k) {
+          if (order[k] >= nc) continue;
           SolverContact& c = constraints[order[k]];
           const double p0 = c.p[0].pn, p1 = c.p[1].pn;
           solve(bodies, c);
@@ -306,17 +372,46 @@ void chooseSolvers(WorldImpl& w) {
       parent[std::max(ra, rb)] = std::min(ra, rb);
     }
   }
+  // Joints: solved where one of their bodies is awake and dynamic; in auto mode they join the
+  // islands of their bodies, and count as kJointPoints contact points each.
+  w.si_joints.clear();
+  w.soft_joints.clear();
+  const auto active = [&](uint32_t slot) { return slot != kWorldSlot && w.isActive(slot); };
+  for (uint32_t k = 0; k < w.joints.size(); ++k) {
+    const Joint& j = w.joints[k];
+    if (!j.alive) continue;
+    const uint32_t slots[4] = {j.a, j.b, j.c, j.d};
+    uint32_t first = kWorldSlot;
+    for (uint32_t s : slots) {
+      if (!active(s)) continue;
+      if (first == kWorldSlot) {
+        first = s;
+      } else if (mode == ContactSolver::Auto) {
+        const uint32_t ra = findRoot(parent, first), rb = findRoot(parent, s);
+        parent[std::max(ra, rb)] = std::min(ra, rb);
+      }
+    }
+    if (first != kWorldSlot) w.si_joints.push_back(k);
+  }
   if (mode == ContactSolver::SequentialImpulses) return;
   if (mode == ContactSolver::SoftStep) {
     w.soft_solved.swap(w.solved);
     soft_refs.swap(refs);
+    w.soft_joints.swap(w.si_joints);
     return;
   }
   const auto islandOf = [&](const SolvedRef& r) { return findRoot(parent, r.active & 1 ? r.a : r.b); };
+  const auto jointIsland = [&](const Joint& j) {
+    for (uint32_t s : {j.a, j.b, j.c, j.d})
+      if (active(s)) return findRoot(parent, s);
+    return uint32_t{0};
+  };
   for (const SolvedRef& r : refs) points[islandOf(r)] += r.count;
+  for (uint32_t k : w.si_joints) points[jointIsland(w.joints[k])] += kJointPoints;
+  const uint32_t threshold = static_cast<uint32_t>(w.def.soft_step_points);
   size_t kept = 0;
   for (size_t j = 0; j < refs.size(); ++j) {
-    if (points[islandOf(refs[j])] >= static_cast<uint32_t>(w.def.soft_step_points)) {
+    if (points[islandOf(refs[j])] >= threshold) {
       w.soft_solved.push_back(w.solved[j]);
       soft_refs.push_back(refs[j]);
     } else {
@@ -326,6 +421,15 @@ void chooseSolvers(WorldImpl& w) {
   }
   w.solved.resize(kept);
   refs.resize(kept);
+  kept = 0;
+  for (uint32_t k : w.si_joints) {
+    if (points[jointIsland(w.joints[k])] >= threshold) {
+      w.soft_joints.push_back(k);
+    } else {
+      w.si_joints[kept++] = k;
+    }
+  }
+  w.si_joints.resize(kept);
 }
 
 SolverContact compact(const Contact& c, const SolverPrepared& prep) {
@@ -363,7 +467,7 @@ void solveContacts(WorldImpl& w) {
   }
   chooseSolvers(w);
   softStep(w);
-  if (w.solved.empty()) return;
+  if (w.solved.empty() && w.si_joints.empty()) return;
   auto& prepared = w.solver_prepared;
   prepared.assign(w.solved.size(), SolverPrepared{});
   for (size_t k = 0; k < w.solved.size(); ++k) prepare(w, w.contacts[w.solved[k]], prepared[k]);
@@ -383,7 +487,15 @@ void solveContacts(WorldImpl& w) {
   auto& constraints = w.solver_contacts;
   constraints.clear();
   for (size_t k = 0; k < w.solved.size(); ++k) constraints.push_back(compact(w.contacts[w.solved[k]], prepared[k]));
+  // Joints: on the velocities only (joint.h); their position error is removed afterwards
+  // (position_correction.cpp).
+  JointStep step;
+  step.h = w.dt;
+  step.inv_h = 1.0 / w.dt;
+  step.warm_starting = w.def.warm_starting;
+  for (uint32_t k : w.si_joints) prepareJointAt(w, w.joints[k], step);
   if (w.def.warm_starting) {
+    for (uint32_t k : w.si_joints) solveJointVelocity(bodies, w.joints[k], step, true);
     // Start from the impulses carried over from the previous step (narrow_phase.cpp).
     for (SolverContact& c : constraints) {
       const double tx = c.ny, ty = -c.nx;
@@ -393,9 +505,15 @@ void solveContacts(WorldImpl& w) {
       }
     }
   }
-  for (int it = 0; it < w.def.iterations; ++it)
+  // Joints' equalities solved exactly first (joint_direct.cpp), then everything by Gauss–Seidel,
+  // then the equalities exactly again (the passes for contacts, limits and motors moved them).
+  directJointVelocities(w, bodies);
+  for (int it = 0; it < w.def.iterations; ++it) {
+    for (uint32_t k : w.si_joints) solveJointVelocity(bodies, w.joints[k], step, false);
     for (SolverContact& c : constraints) solve(bodies, c);
-  convergeSmallIslands(w, bodies, constraints);
+  }
+  convergeSmallIslands(w, bodies, constraints, step);
+  directJointVelocities(w, bodies);
 
   for (size_t k = 0; k < constraints.size(); ++k) {
     Contact& c = w.contacts[w.solved[k]];

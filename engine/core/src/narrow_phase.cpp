@@ -52,7 +52,7 @@ void narrowPhase(WorldImpl& w) {
     if (ia == ib) continue;
     if (va.special || vb.special) {
       const BodyShape &sa = w.shapes[pair.a], &sb = w.shapes[pair.b];
-      if (sa.sensor || sb.sensor || !shouldCollide(sa.filter, sb.filter)) continue;
+      if (sa.sensor || sb.sensor || !shouldCollide(sa.filter, sb.filter) || w.jointBlocksCollision(ia, ib)) continue;
     }
     const Body& a = w.bodies[ia];
     const Body& b = w.bodies[ib];

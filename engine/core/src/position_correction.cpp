@@ -39,6 +39,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "joint_solver.h"
 #include "stages.h"
 #include "world_impl.h"
 
@@ -151,7 +152,10 @@ void correctPositions(WorldImpl& w) {
     w.correction_start[i] = w.bodies[i].center;
     w.correction_start_angle[i] = w.bodies[i].angle;
   }
-  if (w.solved.empty()) return;  // no contacts, or all of them solved by the soft step
+  if (w.solved.empty()) {  // no contacts, or all of them solved by the soft step
+    correctJointPositions(w);
+    return;
+  }
   if (w.def.contact_displacement) applyContactDisplacement(w);
   switch (w.def.position_correction) {
     case PositionCorrection::LinearProjection:
@@ -169,6 +173,7 @@ void correctPositions(WorldImpl& w) {
     if (w.alive[i] && (b.center != w.correction_start[i] || b.angle != w.correction_start_angle[i]))
       WorldImpl::syncTransform(w.bodies[i]);
   }
+  correctJointPositions(w);  // the joints' errors, at the positions the contacts were corrected to
 }
 
 }  // namespace rigidlab

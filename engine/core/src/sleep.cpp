@@ -1,5 +1,5 @@
 // Islands and sleeping. At the end of each step, bodies are grouped into islands: dynamic bodies
-// linked by a contact or by a two-body force (static bodies link nothing). A body counts its time
+// linked by a contact, a joint or a two-body force (static bodies link nothing). A body counts its time
 // below WorldDef::sleep_linear_speed and sleep_angular_speed; when every body of an island has been
 // that still for WorldDef::time_to_sleep, the whole island sleeps: zero velocity, no integration,
 // no contact solving, no force evaluation. An island with a moving member wakes its sleeping ones.
@@ -88,6 +88,13 @@ void updateSleep(WorldImpl& w) {
   }
   for (const ForceEntry& f : w.forces)
     if (f.alive && !f.b.isNull()) link(w, f.a.index, f.b.index);
+  for (const Joint& j : w.joints) {  // jointed bodies sleep and wake together
+    if (!j.alive) continue;
+    const uint32_t slots[4] = {j.a, j.b, j.c, j.d};
+    for (int i = 1; i < 4; ++i)
+      if (slots[0] != kWorldSlot && slots[i] != kWorldSlot) link(w, slots[0], slots[i]);
+    if (slots[0] == kWorldSlot && slots[1] != kWorldSlot && slots[3] != kWorldSlot) link(w, slots[1], slots[3]);
+  }
 
   // Per island: the shortest sleep time of its members (a sleeping member counts as asleep).
   w.island.resize(n);

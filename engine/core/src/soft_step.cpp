@@ -52,6 +52,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "joint_solver.h"
+#include "softness.h"
 #include "stages.h"
 #include "world_impl.h"
 
@@ -59,18 +61,6 @@ namespace rigidlab {
 namespace {
 
 constexpr int L = kSoftLanes;
-
-struct Softness {
-  double bias_rate, mass_scale, impulse_scale;
-};
-
-Softness makeSoft(double hertz, double zeta, double h) {
-  const double omega = 2.0 * M_PI * hertz;
-  const double a1 = 2.0 * zeta + h * omega;
-  const double a2 = h * omega * a1;
-  const double a3 = 1.0 / (1.0 + a2);
-  return {omega / a1, a2 * a3, a3};
-}
 
 // A contact's softness as the passes use it. There are two (SoftLanes::stiff picks one), so the
 // contacts store a flag rather than these four numbers each: the lanes are streamed from memory in
@@ -686,7 +676,8 @@ void softStep(WorldImpl& w) {
   const uint32_t n = static_cast<uint32_t>(w.bodies.size());
   const int substeps = w.def.substeps;
   const double h = w.dt / substeps, inv_h = 1.0 / h;
-  if (w.soft_solved.empty()) return;  // the contacts were chosen by solveContacts (contact_solver.cpp)
+  // The contacts and joints were chosen by solveContacts (contact_solver.cpp).
+  if (w.soft_solved.empty() && w.soft_joints.empty()) return;
 
   // Bodies: the moving ones of those contacts go back to the start of the step.
   auto& bodies = w.soft_bodies;
@@ -705,6 +696,11 @@ void softStep(WorldImpl& w) {
     // Awake dynamic bodies, and kinematic ones that move: both are sub-stepped.
     if (r.active & 1 || w.isMovingKinematic(r.a)) moved[r.a] = 1;
     if (r.active & 2 || w.isMovingKinematic(r.b)) moved[r.b] = 1;
+  }
+  for (uint32_t k : w.soft_joints) {  // jointed bodies are always acted on
+    const Joint& j = w.joints[k];
+    for (uint32_t slot : {j.a, j.b, j.c, j.d})
+      if (slot != kWorldSlot && (w.isActive(slot) || w.isMovingKinematic(slot))) moved[slot] = 2;
   }
   list.clear();
   for (uint32_t i = 0; i < n; ++i) {
@@ -839,6 +835,19 @@ void softStep(WorldImpl& w) {
     sc.points = std::max({sc.count[0], sc.count[1], sc.count[2], sc.count[3]});
   }
 
+  // Joints (joint.h): prepared at the detection state, solved serially before the contacts of each
+  // pass, with the joints' own soft bias.
+  JointStep joint_step;
+  joint_step.h = h;
+  joint_step.inv_h = inv_h;
+  joint_step.soft = makeSoft(std::min(w.def.joint_hertz, 0.25 * inv_h), w.def.joint_damping_ratio, h);
+  joint_step.warm_starting = w.def.warm_starting;
+  for (uint32_t k : w.soft_joints) prepareJointAt(w, w.joints[k], joint_step);
+  const auto jointBodies = [&](const Joint& j) {
+    const auto at = [&](uint32_t slot) { return &bodies[slot == kWorldSlot ? n : slot]; };
+    return JointBodies{at(j.a), at(j.b), at(j.c), at(j.d)};
+  };
+
   // Sub-steps.
   for (int step = 0; step < substeps; ++step) {
     for (uint32_t i : list) {  // kick and warm start
@@ -848,6 +857,8 @@ void softStep(WorldImpl& w) {
       b.w += kick[i].w + warm[i].w;
       warm[i] = {0.0, 0.0, 0.0, 0.0};
     }
+    for (uint32_t k : w.soft_joints) warmStartJoint(w.joints[k], jointBodies(w.joints[k]));
+    for (uint32_t k : w.soft_joints) solveJoint(w.joints[k], jointBodies(w.joints[k]), joint_step, true);
     pass<true>(bodies, groups, tallies, totals, inv_h, step, nullptr, levels);
     for (uint32_t i : list) {  // move
       SoftBody& b = bodies[i];
@@ -861,6 +872,7 @@ void softStep(WorldImpl& w) {
       b.qs = s * inv;
     }
     std::vector<SoftKick>* next = step + 1 < substeps ? &warm : nullptr;
+    for (uint32_t k : w.soft_joints) solveJoint(w.joints[k], jointBodies(w.joints[k]), joint_step, false);  // relax
     pass<false>(bodies, groups, tallies, totals, inv_h, step, next, levels);
   }
   for (size_t g = 0; g < groups.size(); ++g)

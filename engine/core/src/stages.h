@@ -1,6 +1,8 @@
 // The stages of World::step, one file each, in pipeline order.
 #pragma once
 
+#include "rigidlab/world.h"
+
 namespace rigidlab {
 
 struct WorldImpl;
@@ -24,8 +26,12 @@ bool softStepUseAvx2(bool on);
 // Lets groups of one-point contacts take the one-point pass (on by default); off runs them through
 // the two-point pass with a neutral second point: the same bits, for tests.
 void softStepOnePointPass(bool on);
+// κ: the weight an integrator's position update gives to the velocity gained during the step
+// (contact_solver.cpp).
+double restingWeight(Integrator integrator);
 void correctPositions(WorldImpl& w);       // position_correction.cpp  origin.md §9, the contacts in w.solved
 void updateSleep(WorldImpl& w);            // sleep.cpp           islands and sleeping
+void breakJoints(WorldImpl& w);            // world_joint.cpp     joints over their break force or torque
 void expireForces(WorldImpl& w);           // world.cpp           origin.md §6
 
 }  // namespace rigidlab

@@ -19,7 +19,8 @@
 namespace rigidlab {
 
 // ---------------------------------------------------------------------------------------------
-// The step: integrate → find pairs → narrow phase → solve contacts → correct positions → expire.
+// The step: integrate → find pairs → narrow phase → solve contacts and joints → correct positions →
+// break joints → sleep → expire forces.
 
 namespace {
 
@@ -85,10 +86,11 @@ void World::step(double dt) {
   const auto t2 = Clock::now();
   narrowPhase(w);  // origin.md §7: manifolds with feature ids
   const auto t3 = Clock::now();
-  solveContacts(w);  // origin.md §8–10: sequential impulses; large islands by the soft step
+  solveContacts(w);  // origin.md §8–10: contacts and joints; large islands by the soft step
   const auto t4 = Clock::now();
-  correctPositions(w);  // origin.md §9: penetration removal (the soft step's islands need none)
+  correctPositions(w);  // origin.md §9: penetration and joint errors (the soft step's islands need none)
   guardNonFinite(w, "the contact solve");
+  breakJoints(w);  // joints over their break force or torque go, reported (jointBreaks)
   const auto t5 = Clock::now();
   w.clock.advance(dt);
   updateSleep(w);  // islands whose bodies stayed still long enough stop being simulated
@@ -106,6 +108,7 @@ void World::step(double dt) {
   s.finish_ms = ms(t5, t6);
   s.pairs = static_cast<int>(w.pairs.size());
   s.contacts = static_cast<int>(w.contacts.size());
+  s.joints = static_cast<int>(w.si_joints.size() + w.soft_joints.size());
   for (const Contact& c : w.contacts) s.contact_points += c.count;
   for (size_t i = 0; i < w.bodies.size(); ++i) {
     if (!w.alive[i]) continue;
@@ -157,6 +160,8 @@ World::World(const WorldDef& def) : impl_(std::make_unique<WorldImpl>()) {
                      "position_correction_rate must be in (0, 1], got " + formatNumber(def.position_correction_rate));
   impl_->def.position_correction_rate = def.position_correction_rate;
   setRestitutionThreshold(def.restitution_threshold);
+  impl_->def.joint_hertz = requirePositive("joint_hertz", def.joint_hertz);
+  impl_->def.joint_damping_ratio = requireNonNegative("joint_damping_ratio", def.joint_damping_ratio);
   setStaticFrictionSpeed(def.static_friction_speed);
   setContactMargin(def.contact_margin);
   setSleeping(def.sleeping);

@@ -129,6 +129,7 @@ BodyId World::createBody(const BodyDef& def) {
     w.alive.push_back(1);
   }
   const BodyId id = w.bodies[index].id;
+  w.body_joints.resize(w.bodies.size());
   if (def.shape) {
     try {
       w.attachShape(index, shape_def, def.mass ? "mass" : "density", def.mass.value_or(def.density));
@@ -160,6 +161,11 @@ void World::destroyBody(BodyId id) {
   for (const Contact& c : w.contacts) {  // what rested on it may now fall
     if (c.a == id.index) w.wakeIsland(c.b);
     if (c.b == id.index) w.wakeIsland(c.a);
+  }
+  if (id.index < w.body_joints.size()) {
+    const std::vector<uint32_t> joints = w.body_joints[id.index];  // releasing edits the list
+    for (uint32_t k : joints)
+      if (w.joints[k].alive) w.releaseJoint(k);
   }
   Body& b = w.bodies[id.index];
   for (ShapeId s : b.shapes) w.releaseShape(s.index);

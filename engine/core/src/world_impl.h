@@ -8,6 +8,7 @@
 
 #include "broad_phase.h"
 #include "contact.h"
+#include "joint.h"
 #include "manifold.h"
 #include "rigidlab/error.h"
 #include "rigidlab/world.h"
@@ -52,6 +53,22 @@ struct WorldImpl {
 
   std::vector<ForceEntry> forces;
   std::vector<uint32_t> free_forces;
+
+  // Joints by slot (JointId::index), reused like bodies. Each body slot lists its joints.
+  std::vector<Joint> joints;
+  std::vector<uint32_t> free_joints;
+  std::vector<std::vector<uint32_t>> body_joints;  // per body slot: joint slots
+  std::vector<uint32_t> si_joints, soft_joints;    // this step's, by solver (contact_solver.cpp)
+  std::vector<char> joint_displaced;               // per slot: scratch of joint_solver.cpp
+  struct JointBreak {  // a joint that broke in the last step (removed at its end)
+    JointId id;
+    JointDef def;
+    Vec2 force = Vec2::Zero();
+    double torque = 0.0;
+  };
+  std::vector<JointBreak> joint_breaks;
+  // Do the bodies in slots a and b share a joint that keeps them from colliding?
+  bool jointBlocksCollision(uint32_t a, uint32_t b) const;
 
   SimClock clock;
   double dt = 0.0;  // of the step in progress [s]
@@ -128,7 +145,7 @@ struct WorldImpl {
   struct ShapeView {
     PlacedShape placed;  // the geometry, its body's transform, the world polygon
     uint32_t body;       // slot
-    bool special;        // a sensor or a filter other than the default: the narrow phase looks closer
+    bool special;        // a sensor, a filter other than the default, or a jointed body: the narrow phase looks closer
   };
   std::vector<ShapeView> shape_views;
   std::vector<BodyPair> pairs;             // shape slots
@@ -168,6 +185,8 @@ struct WorldImpl {
     return id.index < shapes.size() && shape_alive[id.index] && shapes[id.index].id.generation == id.generation;
   }
   BodyShape& get(ShapeId id);        // throws InputError("shape", ...) for a stale handle
+  Joint& get(JointId id);            // throws InputError("joint", ...) for a stale handle
+  void releaseJoint(uint32_t index);  // removes the joint (and gears that use it), waking its bodies
   // Recomputes the body's mass, centre of mass and inertia from its shapes (world_shape.cpp);
   // `field`, `value`: what the densities came from, for the error message.
   void updateMass(Body& b, const char* field, double value);

@@ -20,6 +20,7 @@
 #include "rigidlab/debug_draw.h"
 #include "rigidlab/force.h"
 #include "rigidlab/forces.h"
+#include "rigidlab/joint.h"
 
 namespace rigidlab {
 
@@ -128,6 +129,10 @@ struct WorldDef {
   // Restitution applies only to contacts approaching faster than this, so resting contacts do not
   // bounce on the g·dt of every step (0.16 m/s at 60 Hz). [m/s] ≥ 0
   double restitution_threshold = 0.5;
+  // Joints' rigid constraints in the soft step: the frequency and damping ratio of the soft bias that
+  // removes their position error (at most a quarter of the sub-step rate is used). [Hz] > 0, ≥ 0
+  double joint_hertz = 120.0;
+  double joint_damping_ratio = 1.0;
   // Static friction (f_s) is used when the tangential speed at the start of the step is below this,
   // dynamic friction (f_d) otherwise (origin.md §10, the "small ε"). [m/s] ≥ 0
   double static_friction_speed = 0.01;
@@ -164,11 +169,13 @@ struct StepStats {
          finish_ms = 0;
   double forces_ms = 0;     // part of integrate_ms spent in Force::evaluate
   int bodies = 0, dynamic_bodies = 0, awake_bodies = 0, forces = 0;
-  int pairs = 0, contacts = 0, contact_points = 0;
+  int pairs = 0, contacts = 0, contact_points = 0, joints = 0;
   long force_evaluations = 0;  // calls of Force::evaluate in this step
   int ccd_sweeps = 0, ccd_hits = 0;  // fast bodies swept against static ones, and those stopped
   bool pairs_reused = false;  // the broad phase filtered the kept pair list instead of rebuilding
   int rk4_handovers = 0;  // intervals RK4 left to semi-implicit Euler: a damper too stiff for it
+  int joint_position_passes = 0;  // Gauss–Seidel passes of the joints' position correction (sequential impulses)
+  int joint_newton_steps = 0;     // Newton steps of the joints' direct position solve (sequential impulses)
   double total_ms() const { return integrate_ms + broad_phase_ms + narrow_phase_ms + solve_ms + correct_ms + finish_ms; }
 };
 
@@ -265,6 +272,29 @@ class World {
     Filter filter;
   };
   std::vector<ShapeId> createChain(BodyId body, const ChainDef& def);
+
+  // --- joints (joint.h). A joint is removed with either of its bodies (and a gear with either of
+  // its joints); a broken one is removed at the end of the step in which it broke.
+  JointId createJoint(const JointDef& def);  // InputError names the bad field and value
+  void destroyJoint(JointId id);
+  bool isValid(JointId id) const;
+  // The joint's definition: anchors and axis in world coordinates at creation, the rest as set.
+  const JointDef& joint(JointId id) const;
+  // Changes what may change after creation: limits, motor, spring, offsets, forces, break
+  // thresholds, name, collide_connected (not the type, bodies, anchors or axis).
+  void updateJoint(JointId id, const JointDef& def);
+  JointState jointState(JointId id) const;
+  std::vector<JointId> jointIds() const;  // live joints in creation order of their slots
+  std::optional<JointId> findJoint(std::string_view name) const;
+  std::vector<JointId> jointsOf(BodyId body) const;
+  // The joints that broke in the last step: their definitions and the force and torque that broke them.
+  struct JointBreakInfo {
+    JointId id;
+    JointDef def;
+    Vec2 force = Vec2::Zero();
+    double torque = 0.0;
+  };
+  std::vector<JointBreakInfo> jointBreaks() const;
 
   // --- forces. `duration` [s]: the force acts for that much simulated time from now and is removed
   // at the end of the step in which it runs out (origin.md §6); infinity = permanent. A step that
