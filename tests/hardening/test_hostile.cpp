@@ -134,3 +134,38 @@ TEST_CASE("hostile: a scene's strings count against its memory limit") {
                "end\n");
         }).message == "(no error)");
 }
+
+TEST_CASE("hostile: OnDraw output is bounded per frame, and the report says when it was cut") {
+  struct Counter final : OverlayDraw {
+    int lines = 0, circles = 0, texts = 0;
+    size_t longest = 0, bytes = 0;
+    void line(const Vec2&, const Vec2&, const Color&) override { ++lines; }
+    void circle(const Vec2&, double, const Color&) override { ++circles; }
+    void text(const Vec2&, const std::string& t, const Color&) override {
+      ++texts;
+      longest = std::max(longest, t.size());
+      bytes += t.size();
+    }
+  };
+  auto scene = load(R"lua(
+    function PopulateWorld(world) end
+    local long = string.rep("t", 2048)
+    function OnDraw(draw)
+      for i = 1, 30000 do draw:line({0, 0}, {1, 1}) end
+      for i = 1, 3000 do draw:circle({0, 0}, 1) end
+      for i = 1, 600 do draw:text({0, 0}, long) end
+    end)lua");
+  Counter c;
+  const Scene::DrawReport r = scene->onDraw(c);
+  CHECK(r.truncated);
+  CHECK(c.lines == Scene::kMaxDrawLines);
+  CHECK(c.circles == Scene::kMaxDrawCircles);
+  CHECK(c.longest <= kDrawTextBytes);
+  CHECK(c.bytes <= Scene::kMaxDrawTextBytes);
+  CHECK(c.texts == static_cast<int>(Scene::kMaxDrawTextBytes / kDrawTextBytes));  // 64 KiB in texts of 1 KiB
+  // The next frame starts afresh, and a frame within the allowance is not reported as cut.
+  auto small = load("function PopulateWorld(world) end\nfunction OnDraw(draw) draw:line({0, 0}, {1, 1}) end");
+  Counter d;
+  CHECK_FALSE(small->onDraw(d).truncated);
+  CHECK(d.lines == 1);
+}
