@@ -1,4 +1,4 @@
-// Hostile scenes (issue 17), the parts best tested from C++: the suggestion rule for misspelt
+// Hostile scenes, the parts best tested from C++: the suggestion rule for misspelt
 // names, how text from a scene is shown, that no finalizer exists in a scene's state, and memory
 // pressure at every point of loading. The scenes themselves are in tests/hostile/.
 #include <doctest/doctest.h>
