@@ -99,12 +99,27 @@ run(1 run ${WORK}/failing.lua --json --time 0)
 string(JSON check GET "${out}" check)
 expect_equal("failed check in JSON" "${check}" "failed")
 
+# Exit status 3: the run blew up (the NaN firewall froze a body, or the energy became non-finite).
+file(WRITE ${WORK}/blowup.lua "scene = { gravity = {0, 0}, integrator = 'semi_implicit_euler' }\n"
+     "function PopulateWorld(world) world:add_circle{ radius = 1, velocity = {1.7e308, 0} } end\n"
+     "function OnStep(world) world:bodies()[1].velocity = {1.7e308, 0} end\n")
+run(3 run ${WORK}/blowup.lua --json --time 0.2)
+string(JSON nincidents LENGTH "${out}" incidents)
+if(nincidents LESS 1)
+  message(FATAL_ERROR "no incidents in the JSON of a run that blew up: ${out}")
+endif()
+string(JSON check GET "${out}" check)
+expect_equal("check of a run that blew up" "${check}" "none")
+
 # Exit status 2: usage errors.
 run(2 run ${scene} --bogus)
 run(2 run ${scene} --time -1)
 run(2 run ${scene} --time 1 --steps 2)
 run(2 run ${scene} --integrator rk5)
 run(2 run ${scene} --dt 0)
+run(2 run ${scene} --steps 10000001)
+run(2 run ${scene} --dt 1e-300)
+run(2 run ${scene} --time 1e300)
 run(2 run)
 run(2 frobnicate)
 message(STATUS "runner command line: all checks passed")

@@ -3,7 +3,9 @@
 #pragma once
 
 #include <memory>
+#include <new>
 #include <string>
+#include <type_traits>
 
 #include "rigidlab/lua/scene.h"
 #include "script_host.h"
@@ -26,8 +28,15 @@ struct Scene::Impl {
   LuaDraw* draw = nullptr;  // draw_handle's object
 };
 
+// Handles are full userdata holding these plain structs, with metatables of the host's own
+// (handles.cpp), not sol2 usertypes: a handle's metatable holds only __index, __newindex,
+// __tostring, __eq, __name and __metatable = false (getmetatable(handle) is false), and no __gc,
+// for a handle needs no finalizer (the structs are trivially destructible). So no finalizer
+// exists in a scene's state at all, and no key of a handle reaches a binding's internals.
+
 // A body as Lua sees it (`world:add_box{}` returns one). Stale after world:remove(body).
 struct LuaBody {
+  static constexpr const char* kMetatable = "rigidlab.body";
   Scene::Impl* scene;
   BodyId id;
   uint32_t uid;
@@ -35,25 +44,47 @@ struct LuaBody {
 
 // A force, spring or damper as Lua sees it.
 struct LuaForceHandle {
+  static constexpr const char* kMetatable = "rigidlab.force";
   Scene::Impl* scene;
   ForceId id;
-  std::string kind;
+  const char* kind;  // "spring", "damper", "lua force": a string literal
 };
 
 struct LuaWorld {
+  static constexpr const char* kMetatable = "rigidlab.world";
   Scene::Impl* scene;
 };
 
 // The `draw` argument of OnDraw; usable only during that call, which it counts (Scene::DrawReport).
 struct LuaDraw {
+  static constexpr const char* kMetatable = "rigidlab.draw";
   OverlayDraw* target = nullptr;
   Scene::DrawReport report;
   size_t text_bytes = 0;
 };
 
-void registerBodyType(sol::state& lua);
-void registerWorldType(sol::state& lua);
-void registerDrawType(sol::state& lua);
+// The handle of type T at `index`, or nullptr if the value is something else.
+template <typename T>
+T* toHandle(lua_State* L, int index) {
+  return static_cast<T*>(luaL_testudata(L, index, T::kMetatable));
+}
+
+// Pushes a new handle holding `value`.
+template <typename T>
+void pushHandle(lua_State* L, const T& value) {
+  static_assert(std::is_trivially_destructible_v<T>, "a handle must need no finalizer (no __gc)");
+  new (lua_newuserdatauv(L, sizeof(T), 0)) T(value);
+  luaL_setmetatable(L, T::kMetatable);
+}
+
+// Creates the metatable `name` in the registry with the given metamethods (nullptr: none) and
+// __metatable = false.
+void registerHandleType(lua_State* L, const char* name, lua_CFunction index, lua_CFunction new_index,
+                        lua_CFunction to_string, lua_CFunction equal);
+
+void registerBodyType(lua_State* L);
+void registerWorldType(lua_State* L);
+void registerDrawType(lua_State* L);
 
 // The handle of a live body (created on first use, then cached in Scene::Impl::handles).
 sol::object bodyHandle(lua_State* L, Scene::Impl& scene, BodyId id);

@@ -17,8 +17,9 @@ constexpr double kPatternWorkLimit = 5e7;
 constexpr long long kNativeSortLimit = 100000;
 // table.move loops in C over every index of its range, nil or not: at most this many per call.
 constexpr long long kMoveLimit = 10000000;
-// load() parses in C: chunks of at most this many bytes (and never more than
-// ScriptLimits::source_bytes). Parsing 1 MiB takes about 75 ms here.
+// load() parses in C: chunks of at most this many bytes, as one string or in all the pieces a
+// reader function returns (and never more than ScriptLimits::source_bytes). Parsing 1 MiB takes
+// about 75 ms here.
 constexpr size_t kLoadChunkLimit = size_t{1} << 20;
 
 // Worst-case work of Lua's pattern matcher for `pattern` on `subject` (n bytes): start positions

@@ -24,10 +24,11 @@ using api::kBodyWritable;
 World& worldOf(lua_State* L, const LuaBody& b, std::string_view function) { return liveWorld(L, *b.scene, function); }
 
 const LuaBody& selfBody(lua_State* L, const sol::stack_object& self, std::string_view function) {
-  if (!self.is<LuaBody>())
+  const LuaBody* b = toHandle<LuaBody>(L, self.stack_index());
+  if (!b)
     fail(L, function, "call it as body:" + std::string(function) + "(...), with a colon; got " + describe(self) +
                           " as the body");
-  return self.as<const LuaBody&>();
+  return *b;
 }
 
 double numberArg(lua_State* L, std::string_view function, std::string_view what, const sol::stack_object& v) {
@@ -82,14 +83,15 @@ int applyForce(lua_State* L) {
   return 0;
 }
 
-sol::object bodyIndex(sol::this_state ts, const LuaBody& self, sol::stack_object key) {
-  lua_State* L = ts;
+sol::object bodyIndex(lua_State* L, const LuaBody& self, const sol::stack_object& key) {
   if (key.get_type() != sol::type::string) fail(L, "body", "fields are named by strings, got " + describe(key));
   const std::string k = key.as<std::string>();
   if (k == "removed") return sol::make_object(L, !worldOf(L, self, "body.removed").isValid(self.id));
   if (k == "id") return sol::make_object(L, self.uid);
-  if (k == "apply_impulse") return sol::make_object(L, guarded<applyImpulse>);
-  if (k == "apply_force") return sol::make_object(L, guarded<applyForce>);
+  if (k == "apply_impulse" || k == "apply_force") {
+    lua_pushcfunction(L, k == "apply_impulse" ? guarded<applyImpulse> : guarded<applyForce>);
+    return sol::stack::pop<sol::object>(L);
+  }
   if (std::find(kBodyReadable.begin(), kBodyReadable.end(), k) == kBodyReadable.end()) {
     const std::string hint = closestName(k, kBodyReadable);
     fail(L, "body", "has no field '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
@@ -125,8 +127,7 @@ sol::object bodyIndex(sol::this_state ts, const LuaBody& self, sol::stack_object
   return sol::stack::pop<sol::object>(L);
 }
 
-void bodyNewIndex(sol::this_state ts, const LuaBody& self, sol::stack_object key, sol::stack_object value) {
-  lua_State* L = ts;
+void bodyNewIndex(lua_State* L, const LuaBody& self, const sol::stack_object& key, const sol::stack_object& value) {
   if (key.get_type() != sol::type::string) fail(L, "body", "fields are named by strings, got " + describe(key));
   const std::string k = key.as<std::string>();
   const std::string function = "body." + k;
@@ -190,20 +191,43 @@ std::string bodyToString(const LuaBody& self) {
 
 }  // namespace
 
-void registerBodyType(sol::state& lua) {
-  lua.new_usertype<LuaBody>("rigidlab.body", sol::no_constructor,
-      sol::meta_function::index, &bodyIndex,
-      sol::meta_function::new_index, &bodyNewIndex,
-      sol::meta_function::to_string, &bodyToString,
-      sol::meta_function::equal_to, [](const LuaBody& a, const LuaBody& b) { return a.scene == b.scene && a.uid == b.uid; });
-  lua["rigidlab.body"] = sol::lua_nil;  // no global; the type lives in the registry
+namespace {
+
+int bodyIndexMeta(lua_State* L) {
+  bodyIndex(L, selfBody(L, sol::stack_object(L, 1), "body"), sol::stack_object(L, 2)).push(L);
+  return 1;
+}
+
+int bodyNewIndexMeta(lua_State* L) {
+  bodyNewIndex(L, selfBody(L, sol::stack_object(L, 1), "body"), sol::stack_object(L, 2), sol::stack_object(L, 3));
+  return 0;
+}
+
+int bodyToStringMeta(lua_State* L) {
+  const std::string text = bodyToString(selfBody(L, sol::stack_object(L, 1), "tostring"));
+  lua_pushlstring(L, text.data(), text.size());
+  return 1;
+}
+
+int bodyEqualMeta(lua_State* L) {
+  const LuaBody *a = toHandle<LuaBody>(L, 1), *b = toHandle<LuaBody>(L, 2);
+  lua_pushboolean(L, a && b && a->scene == b->scene && a->uid == b->uid);
+  return 1;
+}
+
+}  // namespace
+
+void registerBodyType(lua_State* L) {
+  registerHandleType(L, LuaBody::kMetatable, guarded<bodyIndexMeta>, guarded<bodyNewIndexMeta>, guarded<bodyToStringMeta>,
+                     guarded<bodyEqualMeta>);
 }
 
 sol::object bodyHandle(lua_State* L, Scene::Impl& scene, BodyId id) {
   const uint32_t uid = scene.world->body(id).uid;
   sol::object cached = scene.handles.raw_get<sol::object>(uid);
   if (cached.valid() && cached.get_type() != sol::type::lua_nil) return cached;
-  sol::object handle = sol::make_object(L, LuaBody{&scene, id, uid});
+  pushHandle(L, LuaBody{&scene, id, uid});
+  sol::object handle = sol::stack::pop<sol::object>(L);
   scene.handles.raw_set(uid, handle);
   return handle;
 }
@@ -216,19 +240,21 @@ BodyId liveBody(lua_State* L, const LuaBody& body, std::string_view function) {
 
 BodyId bodyOption(lua_State* L, Scene::Impl& scene, std::string_view function, std::string_view key,
                   const sol::object& value) {
-  if (!value.is<LuaBody>())
+  value.push(L);
+  const LuaBody* handle = toHandle<LuaBody>(L, -1);
+  lua_pop(L, 1);
+  if (!handle)
     fail(L, function, std::string(key) + " must be a body (from world:add_box, add_circle, ...), got " + describe(value));
-  const LuaBody& b = value.as<const LuaBody&>();
+  const LuaBody& b = *handle;
   if (b.scene != &scene) fail(L, function, std::string(key) + " is a body of another scene");
   return liveBody(L, b, function);
 }
 
 std::string describeHandle(lua_State* L, int index) {
-  sol::stack_object v(L, index);
-  if (v.is<LuaBody>()) return bodyToString(v.as<const LuaBody&>());
-  if (v.is<LuaForceHandle>()) return "a " + v.as<const LuaForceHandle&>().kind;
-  if (v.is<LuaWorld>()) return "the world";
-  if (v.is<LuaDraw>()) return "the draw object";
+  if (const LuaBody* b = toHandle<LuaBody>(L, index)) return bodyToString(*b);
+  if (const LuaForceHandle* f = toHandle<LuaForceHandle>(L, index)) return std::string("a ") + f->kind;
+  if (toHandle<LuaWorld>(L, index)) return "the world";
+  if (toHandle<LuaDraw>(L, index)) return "the draw object";
   return "a userdata";
 }
 

@@ -12,9 +12,9 @@ namespace rigidlab::lua {
 namespace {
 
 LuaDraw& self(lua_State* L, std::string_view function) {
-  sol::stack_object v(L, 1);
-  if (!v.is<LuaDraw>()) fail(L, function, "call it as draw:" + std::string(function) + "(...), with a colon");
-  LuaDraw& d = v.as<LuaDraw&>();
+  LuaDraw* handle = toHandle<LuaDraw>(L, 1);
+  if (!handle) fail(L, function, "call it as draw:" + std::string(function) + "(...), with a colon");
+  LuaDraw& d = *handle;
   if (!d.target) fail(L, function, "the draw object can only be used during OnDraw");
   return d;
 }
@@ -97,8 +97,8 @@ int text(lua_State* L) {
   return 0;
 }
 
-sol::object drawIndex(sol::this_state ts, const LuaDraw&, sol::stack_object key) {
-  lua_State* L = ts;
+int drawIndex(lua_State* L) {
+  sol::stack_object key(L, 2);
   const std::string k = key.is<std::string>() ? key.as<std::string>() : describe(key);
   lua_CFunction f = k == "line" ? guarded<line> : k == "circle" ? guarded<circle> : k == "text" ? guarded<text> : nullptr;
   if (!f) {
@@ -106,14 +106,11 @@ sol::object drawIndex(sol::this_state ts, const LuaDraw&, sol::stack_object key)
     fail(L, "draw", "has no function '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
   }
   lua_pushcfunction(L, f);
-  return sol::stack::pop<sol::object>(L);
+  return 1;
 }
 
 }  // namespace
 
-void registerDrawType(sol::state& lua) {
-  lua.new_usertype<LuaDraw>("rigidlab.draw", sol::no_constructor, sol::meta_function::index, &drawIndex);
-  lua["rigidlab.draw"] = sol::lua_nil;
-}
+void registerDrawType(lua_State* L) { registerHandleType(L, LuaDraw::kMetatable, guarded<drawIndex>, nullptr, nullptr, nullptr); }
 
 }  // namespace rigidlab::lua

@@ -22,10 +22,11 @@ using api::kWorldFields;
 using api::kWorldMethods;
 
 Scene::Impl& selfWorld(lua_State* L, const sol::stack_object& self, std::string_view function) {
-  if (!self.is<LuaWorld>())
+  const LuaWorld* world = toHandle<LuaWorld>(L, self.stack_index());
+  if (!world)
     fail(L, function, "call it as world:" + std::string(function) + "(...), with a colon; got " + describe(self) +
                           " as the world");
-  Scene::Impl& scene = *self.as<const LuaWorld&>().scene;
+  Scene::Impl& scene = *world->scene;
   liveWorld(L, scene, function);
   return scene;
 }
@@ -131,8 +132,8 @@ int addPolygon(lua_State* L) {
   return 1;
 }
 
-sol::object forceHandle(lua_State* L, Scene::Impl& scene, ForceId id, std::string kind) {
-  return sol::make_object(L, LuaForceHandle{&scene, id, std::move(kind)});
+void pushForceHandle(lua_State* L, Scene::Impl& scene, ForceId id, const char* kind) {
+  pushHandle(L, LuaForceHandle{&scene, id, kind});
 }
 
 int addSpring(lua_State* L) {
@@ -162,7 +163,7 @@ int addSpring(lua_State* L) {
   } catch (const InputError& e) {
     fail(L, "add_spring", e.what());
   }
-  forceHandle(L, scene, id, "spring").push(L);
+  pushForceHandle(L, scene, id, "spring");
   return 1;
 }
 
@@ -179,7 +180,7 @@ int addDamper(lua_State* L) {
   } catch (const InputError& e) {
     fail(L, "add_damper", e.what());
   }
-  forceHandle(L, scene, id, "damper").push(L);
+  pushForceHandle(L, scene, id, "damper");
   return 1;
 }
 
@@ -206,7 +207,7 @@ int addForce(lua_State* L) {
   } catch (const InputError& e) {
     fail(L, "add_force", e.what());
   }
-  forceHandle(L, scene, id, "lua force").push(L);
+  pushForceHandle(L, scene, id, "lua force");
   return 1;
 }
 
@@ -235,17 +236,17 @@ int remove(lua_State* L) {
   Scene::Impl& scene = editedWorld(L, sol::stack_object(L, 1), "remove");
   sol::stack_object what(L, 2);
   try {
-    if (what.is<LuaBody>()) {
-      const LuaBody& b = what.as<const LuaBody&>();
+    if (const LuaBody* body = toHandle<LuaBody>(L, 2)) {
+      const LuaBody& b = *body;
       if (b.scene != &scene) fail(L, "remove", "the body belongs to another scene");
       const BodyId id = liveBody(L, b, "remove");
       const size_t bytes = hostBytes(*scene.world, scene.world->body(id));
       scene.world->destroyBody(id);
       scene.host->release(bytes);
       scene.handles.raw_set(b.uid, sol::lua_nil);
-    } else if (what.is<LuaForceHandle>()) {
-      const LuaForceHandle& f = what.as<const LuaForceHandle&>();
-      if (!scene.world->isValid(f.id)) fail(L, "remove", "the " + f.kind + " was already removed (or has expired)");
+    } else if (const LuaForceHandle* force = toHandle<LuaForceHandle>(L, 2)) {
+      const LuaForceHandle& f = *force;
+      if (!scene.world->isValid(f.id)) fail(L, "remove", std::string("the ") + f.kind + " was already removed (or has expired)");
       scene.world->removeForce(f.id);
     } else {
       fail(L, "remove", "expects a body, force, spring or damper, got " + describe(what));
@@ -309,8 +310,7 @@ void unknownField(lua_State* L, const std::string& k) {
   fail(L, "world", "has no field '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
 }
 
-sol::object worldIndex(sol::this_state ts, const LuaWorld& self, sol::stack_object key) {
-  lua_State* L = ts;
+sol::object worldIndex(lua_State* L, const LuaWorld& self, const sol::stack_object& key) {
   if (key.get_type() != sol::type::string) fail(L, "world", "fields are named by strings, got " + describe(key));
   const std::string k = key.as<std::string>();
   const World& w = liveWorld(L, *self.scene, "world");
@@ -329,8 +329,7 @@ sol::object worldIndex(sol::this_state ts, const LuaWorld& self, sol::stack_obje
   return m;
 }
 
-void worldNewIndex(sol::this_state ts, const LuaWorld& self, sol::stack_object key, sol::stack_object value) {
-  lua_State* L = ts;
+void worldNewIndex(lua_State* L, const LuaWorld& self, const sol::stack_object& key, const sol::stack_object& value) {
   if (key.get_type() != sol::type::string) fail(L, "world", "fields are named by strings, got " + describe(key));
   const std::string k = key.as<std::string>();
   const std::string function = "world." + k;
@@ -383,10 +382,14 @@ void worldNewIndex(sol::this_state ts, const LuaWorld& self, sol::stack_object k
 
 // --- force handles: kind, removed, remove()
 
+const LuaForceHandle& selfForce(lua_State* L, std::string_view function) {
+  const LuaForceHandle* f = toHandle<LuaForceHandle>(L, 1);
+  if (!f) fail(L, function, "call it as handle:" + std::string(function) + "(), with a colon");
+  return *f;
+}
+
 int removeForceHandle(lua_State* L) {
-  sol::stack_object self(L, 1);
-  if (!self.is<LuaForceHandle>()) fail(L, "remove", "call it as handle:remove(), with a colon");
-  const LuaForceHandle& f = self.as<const LuaForceHandle&>();
+  const LuaForceHandle& f = selfForce(L, "remove");
   requireIdle(L, *f.scene, "remove");
   if (f.scene->world->isValid(f.id)) {
     try {
@@ -398,17 +401,57 @@ int removeForceHandle(lua_State* L) {
   return 0;
 }
 
-sol::object forceIndex(sol::this_state ts, const LuaForceHandle& self, sol::stack_object key) {
-  lua_State* L = ts;
+int forceIndex(lua_State* L) {
+  const LuaForceHandle& self = selfForce(L, "handle");
+  sol::stack_object key(L, 2);
   const std::string k = key.is<std::string>() ? key.as<std::string>() : describe(key);
-  if (k == "kind") return sol::make_object(L, self.kind);
-  if (k == "removed") return sol::make_object(L, !liveWorld(L, *self.scene, self.kind).isValid(self.id));
-  if (k == "remove") {
+  if (k == "kind") {
+    lua_pushstring(L, self.kind);
+  } else if (k == "removed") {
+    lua_pushboolean(L, !liveWorld(L, *self.scene, self.kind).isValid(self.id));
+  } else if (k == "remove") {
     lua_pushcfunction(L, guarded<removeForceHandle>);
-    return sol::stack::pop<sol::object>(L);
+  } else {
+    const std::string hint = closestName(k, {"kind", "removed", "remove"});
+    fail(L, self.kind, "has no field '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
   }
-  const std::string hint = closestName(k, {"kind", "removed", "remove"});
-  fail(L, self.kind, "has no field '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
+  return 1;
+}
+
+int forceNewIndex(lua_State* L) {
+  fail(L, selfForce(L, "handle").kind, "handles are read-only (use world:remove to remove it)");
+}
+
+int forceToString(lua_State* L) {
+  lua_pushstring(L, selfForce(L, "tostring").kind);
+  return 1;
+}
+
+int forceEqual(lua_State* L) {
+  const LuaForceHandle *a = toHandle<LuaForceHandle>(L, 1), *b = toHandle<LuaForceHandle>(L, 2);
+  lua_pushboolean(L, a && b && a->id == b->id && a->scene == b->scene);
+  return 1;
+}
+
+const LuaWorld& selfWorldHandle(lua_State* L) {
+  const LuaWorld* w = toHandle<LuaWorld>(L, 1);
+  if (!w) fail(L, "world", "expects the world");
+  return *w;
+}
+
+int worldIndexMeta(lua_State* L) {
+  worldIndex(L, selfWorldHandle(L), sol::stack_object(L, 2)).push(L);
+  return 1;
+}
+
+int worldNewIndexMeta(lua_State* L) {
+  worldNewIndex(L, selfWorldHandle(L), sol::stack_object(L, 2), sol::stack_object(L, 3));
+  return 0;
+}
+
+int worldToString(lua_State* L) {
+  lua_pushliteral(L, "world");
+  return 1;
 }
 
 }  // namespace
@@ -434,20 +477,11 @@ size_t hostBytes(const World& world, const Body& body) {
   return bytes;
 }
 
-void registerWorldType(sol::state& lua) {
-  lua.new_usertype<LuaWorld>("rigidlab.world", sol::no_constructor,
-      sol::meta_function::index, &worldIndex,
-      sol::meta_function::new_index, &worldNewIndex,
-      sol::meta_function::to_string, [](const LuaWorld&) { return std::string("world"); });
-  lua["rigidlab.world"] = sol::lua_nil;
-  lua.new_usertype<LuaForceHandle>("rigidlab.force", sol::no_constructor,
-      sol::meta_function::index, &forceIndex,
-      sol::meta_function::new_index, [](sol::this_state ts, const LuaForceHandle& self, sol::stack_object) {
-        fail(ts, self.kind, "handles are read-only (use world:remove to remove it)");
-      },
-      sol::meta_function::to_string, [](const LuaForceHandle& self) { return self.kind; },
-      sol::meta_function::equal_to, [](const LuaForceHandle& a, const LuaForceHandle& b) { return a.id == b.id && a.scene == b.scene; });
-  lua["rigidlab.force"] = sol::lua_nil;
+void registerWorldType(lua_State* L) {
+  registerHandleType(L, LuaWorld::kMetatable, guarded<worldIndexMeta>, guarded<worldNewIndexMeta>, guarded<worldToString>,
+                     nullptr);
+  registerHandleType(L, LuaForceHandle::kMetatable, guarded<forceIndex>, guarded<forceNewIndex>, guarded<forceToString>,
+                     guarded<forceEqual>);
 }
 
 }  // namespace rigidlab::lua

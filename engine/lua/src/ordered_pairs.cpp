@@ -77,16 +77,14 @@ SortKey keyOf(lua_State* L, int index) {
       }
       return k;
     case LUA_TUSERDATA: {
-      sol::stack_object v(L, index);
       k.rank = kHandle;
-      if (v.is<LuaBody>()) {
-        k.a = 1, k.b = v.as<const LuaBody&>().uid;
-      } else if (v.is<LuaForceHandle>()) {
-        const ForceId id = v.as<const LuaForceHandle&>().id;
-        k.a = 2, k.b = static_cast<uint64_t>(id.index) << 32 | id.generation;
-      } else if (v.is<LuaWorld>()) {
+      if (const LuaBody* b = toHandle<LuaBody>(L, index)) {
+        k.a = 1, k.b = b->uid;
+      } else if (const LuaForceHandle* f = toHandle<LuaForceHandle>(L, index)) {
+        k.a = 2, k.b = static_cast<uint64_t>(f->id.index) << 32 | f->id.generation;
+      } else if (toHandle<LuaWorld>(L, index)) {
         k.a = 3;
-      } else if (v.is<LuaDraw>()) {
+      } else if (toHandle<LuaDraw>(L, index)) {
         k.a = 4;
       } else {
         k.rank = kOther;

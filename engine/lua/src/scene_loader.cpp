@@ -129,12 +129,11 @@ void call(Scene::Impl& s, const sol::object& f, std::string_view name, const Arg
 
 // The steps of load() that touch the state, each inside ScriptHost::run.
 void setUp(Scene::Impl& s) {
-  sol::state& lua = s.host->lua();
-  registerBodyType(lua);
-  registerWorldType(lua);
-  registerDrawType(lua);
-  lockHostMetatables(s.host->L());
-  s.handles = lua.create_table();
+  lua_State* L = s.host->L();
+  registerBodyType(L);
+  registerWorldType(L);
+  registerDrawType(L);
+  s.handles = s.host->lua().create_table();
 }
 
 void runMainChunk(Scene::Impl& s, std::string_view source, const std::string& name) {
@@ -185,9 +184,11 @@ std::unique_ptr<Scene::Impl> load(std::string_view source, const std::string& na
     } catch (const InputError& e) {
       throw SceneError(name + ": scene: " + e.what());
     }
-    s->world_handle = sol::make_object(L, LuaWorld{s.get()});
-    s->draw_handle = sol::make_object(L, LuaDraw{});
-    s->draw = &s->draw_handle.as<LuaDraw&>();
+    pushHandle(L, LuaWorld{s.get()});
+    s->world_handle = sol::stack::pop<sol::object>(L);
+    pushHandle(L, LuaDraw{});
+    s->draw = toHandle<LuaDraw>(L, -1);
+    s->draw_handle = sol::stack::pop<sol::object>(L);
     populate = hook(*s, "PopulateWorld");
     s->on_step = hook(*s, "OnStep");
     s->check = hook(*s, "Check");
@@ -325,8 +326,8 @@ std::vector<Scene::ExactState> readExact(Scene::Impl& s) {
     if (key.get_type() == sol::type::string) {
       id = s.world->findBody(std::string_view(lua_tostring(L, -2)));
       if (!id) bad("no body is named " + describe(L, -2));
-    } else if (key.is<LuaBody>() && s.world->isValid(key.as<const LuaBody&>().id)) {
-      id = key.as<const LuaBody&>().id;
+    } else if (const LuaBody* b = toHandle<LuaBody>(L, -2); b && s.world->isValid(b->id)) {
+      id = b->id;
     } else {
       bad("keys must be body names or bodies, got " + describe(key));
     }

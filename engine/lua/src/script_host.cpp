@@ -364,21 +364,6 @@ ScriptHost& hostOf(lua_State* L) {
   return *host;
 }
 
-void lockHostMetatables(lua_State* L) {
-  // sol2 keeps every metatable of a usertype (for values, pointers, unique pointers, const
-  // variants) in the registry under a name starting with "sol.".
-  lua_pushnil(L);
-  while (lua_next(L, LUA_REGISTRYINDEX)) {
-    if (lua_type(L, -2) == LUA_TSTRING && lua_type(L, -1) == LUA_TTABLE &&
-        std::string_view(lua_tostring(L, -2)).starts_with("sol.")) {
-      lua_pushliteral(L, "__metatable");
-      lua_pushboolean(L, 0);
-      lua_rawset(L, -3);
-    }
-    lua_pop(L, 1);
-  }
-}
-
 std::string sceneLocation(lua_State* L) {
   lua_Debug frame;
   for (int level = 0; lua_getstack(L, level, &frame); ++level) {
@@ -521,9 +506,9 @@ ScriptHost::ScriptHost(const SceneOptions& options, std::filesystem::path scene_
 
 ScriptHost::~ScriptHost() {
   budget_.reset();
-  // Closing runs the finalizers of what is left. Lua runs finalizers with its hooks off, so no
-  // budget could stop one: the only ones that can exist are sol2's C++ destructors of handles
-  // (setmetatable refuses __gc, and the usertypes' metatables are locked: lockHostMetatables).
+  // Closing runs the finalizers of what is left, and Lua runs finalizers with its hooks off, so no
+  // budget could stop one: none exists. setmetatable refuses __gc (one added to a metatable later
+  // is never called) and handles have none (bindings.h).
   lua_.reset();  // while the allocator's counter lives
 }
 

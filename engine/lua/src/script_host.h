@@ -16,7 +16,8 @@
 //   than kNativeSortLimit elements compares through a Lua function (so the budget can stop it);
 //   table.move moves at most kMoveLimit elements per call; string.rep fills by doubling; load()
 //   takes chunks of at most kLoadChunkLimit bytes, strings or the total a reader function returns.
-// - the host's metatables (of _G while the main chunk runs, of the usertypes) are locked.
+// - the host's metatables (of _G while the main chunk runs, of the handles) are locked, and no
+//   finalizer (__gc) exists in the state.
 // - pairs/next visit keys in an order that does not depend on Lua's per-process hash seed
 //   (ordered_pairs.h).
 // Every use of the state from C++ is inside a protected call (run()); no Lua error unwinds
@@ -135,11 +136,6 @@ class ScriptHost {
   std::unique_ptr<sol::state> lua_;
   std::unique_ptr<Budget> budget_;
 };
-
-// Locks the metatables sol2 keeps in the registry for the host's usertypes (world, body, force,
-// draw): getmetatable() of a handle returns false, so a scene can neither read nor change them
-// (replacing __gc would install a finalizer; calling it would destroy a live handle).
-void lockHostMetatables(lua_State* L);
 
 // "<file>:<line>: " of the innermost Lua frame of the scene's own code (chunks whose name does
 // not start with '='), or "".

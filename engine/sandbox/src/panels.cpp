@@ -243,6 +243,9 @@ void statisticsWindow(Session& s, PanelState& p, Renderer& r) {
     ImGui::TextColored(kDimColor, "reloads %d   last load %.1f ms", s.reloads, s.last_load_ms);
     ImGui::TextColored(kDimColor, "watch: %s   %zu vertices drawn", s.watcher.usingInotify() ? "inotify" : "polling",
                        r.vertexCount());
+    if (r.skippedFills() > 0)
+      ImGui::TextColored(kWarnColor, "%d shapes drawn as outlines (fills over %.0f window areas)", r.skippedFills(),
+                         Renderer::kFillScreens);
   }
   ImGui::End();
 }

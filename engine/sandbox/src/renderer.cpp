@@ -85,6 +85,9 @@ void Renderer::begin(const Camera& camera) {
   camera_ = camera;
   vertices_.clear();
   texts_.clear();
+  fill_left_px_ = kFillScreens * camera.width_px * camera.height_px;
+  last_skipped_fills_ = skipped_fills_;
+  skipped_fills_ = 0;
   glViewport(0, 0, camera.width_px, camera.height_px);
   glClearColor(Palette::background.r, Palette::background.g, Palette::background.b, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT);
@@ -138,20 +141,37 @@ void Renderer::drawPolyline(std::span<const Vec2> points, bool closed, const Col
   if (closed && points.size() > 2) drawSegment(points.back(), points.front(), color);
 }
 
+bool Renderer::fillAllowed(double area) {
+  // Only what lands in the window costs: a shape larger than the window fills it once.
+  const double px = std::min(area * camera_.pixels_per_metre * camera_.pixels_per_metre,
+                             static_cast<double>(camera_.width_px) * camera_.height_px);
+  if (!(px <= fill_left_px_)) {
+    ++skipped_fills_;
+    return false;
+  }
+  fill_left_px_ -= px;
+  return true;
+}
+
 void Renderer::drawPolygon(std::span<const Vec2> vertices, const Color& fill, const Color& outline) {
   if (vertices.size() < 3) return;
-  for (size_t i = 1; i + 1 < vertices.size(); ++i) triangle(vertices[0], vertices[i], vertices[i + 1], fill);  // convex
+  double area = 0.0;
+  for (size_t i = 1; i + 1 < vertices.size(); ++i) area += 0.5 * cross(vertices[i] - vertices[0], vertices[i + 1] - vertices[0]);
+  if (fillAllowed(std::abs(area)))
+    for (size_t i = 1; i + 1 < vertices.size(); ++i) triangle(vertices[0], vertices[i], vertices[i + 1], fill);  // convex
   drawPolyline(vertices, true, outline);
 }
 
 void Renderer::drawCircle(const Vec2& center, double radius, double angle, const Color& fill, const Color& outline) {
-  const int n = circleSegments(radius);
-  Vec2 prev = center + Vec2(radius, 0.0);
-  for (int i = 1; i <= n; ++i) {
-    const double t = 2.0 * std::numbers::pi * i / n;
-    const Vec2 p = center + radius * Vec2(std::cos(t), std::sin(t));
-    triangle(center, prev, p, fill);
-    prev = p;
+  if (fillAllowed(std::numbers::pi * radius * radius)) {
+    const int n = circleSegments(radius);
+    Vec2 prev = center + Vec2(radius, 0.0);
+    for (int i = 1; i <= n; ++i) {
+      const double t = 2.0 * std::numbers::pi * i / n;
+      const Vec2 p = center + radius * Vec2(std::cos(t), std::sin(t));
+      triangle(center, prev, p, fill);
+      prev = p;
+    }
   }
   drawCircleOutline(center, radius, outline);
   drawSegment(center, center + radius * Vec2(std::cos(angle), std::sin(angle)), outline);  // shows rotation

@@ -60,7 +60,17 @@ class Renderer final : public DebugDraw, public lua::OverlayDraw {
   void drawPolyline(std::span<const Vec2> points, bool closed, const Color& color);
 
   size_t vertexCount() const { return last_vertex_count_; }  // of the last flush
+  // Filled shapes of the last frame drawn as outlines only because the frame's fill budget was
+  // spent (see kFillScreens).
+  int skippedFills() const { return last_skipped_fills_; }
   float line_width_pixels = 1.5f;
+
+  // The fills of one frame cover at most this many window areas (a shape larger than the window
+  // counts once); the shapes past it are drawn as outlines. 3000 discs heaped on each other, each
+  // as large as the window, made a frame take 4 s under a software renderer (Mesa llvmpipe, about
+  // 850 M pixels blended); with this budget it takes 0.43 s, most of it their outlines. Ordinary
+  // scenes fill a few window areas at most.
+  static constexpr double kFillScreens = 16.0;
 
  private:
   struct Vertex {
@@ -69,12 +79,16 @@ class Renderer final : public DebugDraw, public lua::OverlayDraw {
   };
   void triangle(const Vec2& a, const Vec2& b, const Vec2& c, const Color& color);
   int circleSegments(double radius) const;
+  // Takes `area` [m²] from the frame's fill budget; false (and counted) once it is spent.
+  bool fillAllowed(double area);
 
   unsigned program_ = 0, vao_ = 0, vbo_ = 0;
   int scale_location_ = -1;
   Camera camera_;
   std::vector<Vertex> vertices_;
   size_t last_vertex_count_ = 0;
+  double fill_left_px_ = 0.0;  // of this frame's budget
+  int skipped_fills_ = 0, last_skipped_fills_ = 0;
   struct Text {
     Vec2 position;
     std::string text;
