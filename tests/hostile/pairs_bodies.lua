@@ -19,5 +19,7 @@ function PopulateWorld(world)
   end
   local by_table = {}
   for _, b in ipairs(world:bodies()) do by_table[{b}] = b end
-  for _, b in pairs(by_table) do b.angular_velocity = 0.01 * b.id end  -- order shows in nothing, but must not crash
+  for _, b in pairs(by_table) do  -- order shows in nothing, but must not crash
+    if not b.static then b.angular_velocity = 0.01 * b.id end
+  end
 end
