@@ -291,3 +291,30 @@ TEST_CASE("body properties: gravity scale, damping that never flips, fixed rotat
   for (int i = 0; i < 60; ++i) w.step(1.0 / 60.0);
   CHECK(w.body(off).position().y() == Approx(-0.5 * 9.80665).epsilon(1e-9));  // falls from where it was
 }
+
+TEST_CASE("bullets: a 300 m/s ball stops at a thin dynamic plank; without bullet it passes through") {
+  for (bool bullet : {true, false}) {
+    WorldDef def;
+    def.gravity = Vec2::Zero();
+    World w(def);
+    BodyDef plank;
+    plank.shape = makeBox(0.05, 2.0);
+    plank.position = {5, 0};
+    const BodyId p = w.createBody(plank);
+    BodyDef ball;
+    ball.shape = makeCircle(0.05);
+    ball.velocity = {300, 0};
+    ball.bullet = bullet;
+    ball.restitution = 0.0;
+    const BodyId b = w.createBody(ball);
+    for (int i = 0; i < 10; ++i) w.step(1.0 / 60.0);
+    if (bullet) {
+      // Stopped at the plank, which took the momentum: they move on together (plastic impact).
+      CHECK(w.body(b).position().x() < w.body(p).position().x());
+      const double mb = w.body(b).mass, mp = w.body(p).mass;
+      CHECK(w.body(p).velocity.x() == Approx(300.0 * mb / (mb + mp)).epsilon(1e-6));
+    } else {
+      CHECK(w.body(b).position().x() > w.body(p).position().x());  // tunnelled: only bullets are swept against moving bodies
+    }
+  }
+}

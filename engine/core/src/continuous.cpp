@@ -13,7 +13,8 @@
 // velocity: the narrow phase then finds the contact (speculatively) and the solver stops or
 // bounces the body right away (contact_solver.cpp: the impact happens now, not next step). The
 // body loses the part of the step after the impact (as Box2D 2.4's does).
-// Dynamic–dynamic pairs are not swept.
+// Bullets (BodyDef::bullet) are also swept against moving bodies that are not bullets, where the
+// integration left them, so that a fast small body stops at a thin moving one.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -36,13 +37,23 @@ Transform placed(const Body& b, const Vec2& center, double angle) {
 void sweepFastBodies(WorldImpl& w) {
   const uint32_t n = static_cast<uint32_t>(w.bodies.size());
   const double target = 0.25 * w.def.contact_margin;  // stop this far from contact
+  // Obstacles: every static shape; for bullets also the shapes of moving bodies that are not
+  // bullets, where the integration left them (Box2D's rule: bullets against bullets are not swept).
   w.statics.clear();
+  w.ccd_movers.clear();
+  bool bullets = false;
+  for (uint32_t i = 0; i < n; ++i) bullets |= w.isActive(i) && w.bodies[i].bullet;
   for (uint32_t s = 0; s < w.shapes.size(); ++s) {
     if (!w.shape_alive[s] || w.shapes[s].sensor) continue;
     const Body& b = w.bodyOf(s);
-    if (b.isStatic() && b.enabled) w.statics.push_back(s);
+    if (!b.enabled) continue;
+    if (b.isStatic()) {
+      w.statics.push_back(s);
+    } else if (bullets && !b.bullet && (b.isKinematic() || b.awake)) {
+      w.ccd_movers.push_back(s);
+    }
   }
-  if (w.statics.empty()) return;
+  if (w.statics.empty() && w.ccd_movers.empty()) return;
 
   for (uint32_t i = 0; i < n; ++i) {
     if (!w.isActive(i)) continue;
@@ -58,19 +69,13 @@ void sweepFastBodies(WorldImpl& w) {
 
     const Transform start = placed(b, c0, a0);
     double first = 1.0;
-    for (ShapeId id : b.shapes) {
-      const BodyShape& mover = w.shapes[id.index];
-      if (mover.sensor) continue;
-      // Swept box: the shape's boxes at both ends, grown by the rotation bound.
-      Aabb swept = computeAabb(mover.geometry, start);
-      const Aabb end = computeAabb(mover.geometry, b.xf);
-      swept.lower = swept.lower.cwiseMin(end.lower);
-      swept.upper = swept.upper.cwiseMax(end.upper);
-      for (uint32_t s : w.statics) {
+    const auto sweep = [&](const BodyShape& mover, const Aabb& swept, const std::vector<uint32_t>& obstacles) {
+      for (uint32_t s : obstacles) {
         const BodyShape& wall = w.shapes[s];
-        if (!shouldCollide(mover.filter, wall.filter)) continue;
+        if (wall.body.index == i || !shouldCollide(mover.filter, wall.filter)) continue;
         const Body& wall_body = w.bodies[wall.body.index];
         if (!swept.overlaps(computeAabb(wall.geometry, wall_body.xf))) continue;
+        if (wall_body.isDynamic() && w.jointBlocksCollision(i, wall.body.index)) continue;
         const double d0 = separationLowerBound(mover.geometry, start, wall.geometry, wall_body.xf);
         if (d0 <= target) continue;  // already in contact at the start: the contact solver has it
         double t = 0.0;
@@ -84,6 +89,17 @@ void sweepFastBodies(WorldImpl& w) {
           t += (d - 0.5 * target) / travel;
         }
       }
+    };
+    for (ShapeId id : b.shapes) {
+      const BodyShape& mover = w.shapes[id.index];
+      if (mover.sensor) continue;
+      // Swept box: the shape's boxes at both ends, grown by the rotation bound.
+      Aabb swept = computeAabb(mover.geometry, start);
+      const Aabb end = computeAabb(mover.geometry, b.xf);
+      swept.lower = swept.lower.cwiseMin(end.lower);
+      swept.upper = swept.upper.cwiseMax(end.upper);
+      sweep(mover, swept, w.statics);
+      if (b.bullet) sweep(mover, swept, w.ccd_movers);
     }
     if (first < 1.0) {
       ++w.stats.ccd_hits;

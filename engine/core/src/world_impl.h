@@ -137,7 +137,8 @@ struct WorldImpl {
 
   std::unique_ptr<BroadPhase> broad_phase;
   std::vector<Proxy> proxies;
-  std::vector<uint32_t> statics;  // shape slots of static bodies (continuous.cpp)
+  std::vector<uint32_t> statics;     // shape slots of static bodies (continuous.cpp)
+  std::vector<uint32_t> ccd_movers;  // shape slots of moving bodies that bullets are swept against
   std::vector<char> ccd_hit;      // per slot: stopped by continuous collision detection this step
   std::vector<Vec2> world_vertices, world_normals;  // every polygon placed in the world this step
   std::vector<uint32_t> polygon_offset;             // per shape slot: where its polygon starts in them
