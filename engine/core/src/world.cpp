@@ -93,6 +93,7 @@ void World::step(double dt) {
   breakJoints(w);  // joints over their break force or torque go, reported (jointBreaks)
   const auto t5 = Clock::now();
   w.clock.advance(dt);
+  ++w.layout_version;
   updateSleep(w);  // islands whose bodies stayed still long enough stop being simulated
   ++w.step_count;
   expireForces(w);  // origin.md §6: forces whose time ran out are removed

@@ -214,6 +214,7 @@ void World::setTransform(BodyId id, const Vec2& position, double angle) {
   requireFinite("position", position);
   requireFinite("angle", angle);
   place(b, position, angle);
+  ++impl_->layout_version;
 }
 
 void World::setVelocity(BodyId id, const Vec2& velocity) {
@@ -337,6 +338,7 @@ void World::setEnabled(BodyId id, bool on) {
   Body& b = w.get(id);
   if (b.enabled == on) return;
   w.wakeIsland(id.index);
+  ++w.layout_version;
   b.enabled = on;
   b.awake = on;  // a disabled body is never awake (WorldImpl::isActive)
   b.sleep_time = 0.0;

@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "aabb_tree.h"
 #include "broad_phase.h"
 #include "contact.h"
 #include "joint.h"
@@ -137,6 +138,12 @@ struct WorldImpl {
 
   std::unique_ptr<BroadPhase> broad_phase;
   std::vector<Proxy> proxies;
+  // The queries' tree (world_query.cpp): a leaf per shape slot, synced with the shapes' boxes when
+  // a query comes after anything moved (layout_version counts steps and edits).
+  AabbTree tree;
+  std::vector<int32_t> tree_leaf;  // per shape slot, AabbTree::kNull when not in the tree
+  uint64_t layout_version = 1, tree_version = 0;
+  void syncTree();
   std::vector<uint32_t> statics;     // shape slots of static bodies (continuous.cpp)
   std::vector<uint32_t> ccd_movers;  // shape slots of moving bodies that bullets are swept against
   std::vector<char> ccd_hit;      // per slot: stopped by continuous collision detection this step

@@ -136,6 +136,7 @@ uint32_t WorldImpl::attachShape(uint32_t body, const ShapeDef& def, const char* 
     shape_alive.push_back(1);
   }
   b.shapes.push_back(shapes[index].id);
+  ++layout_version;
   try {
     updateMass(b, field, value);
   } catch (...) {
@@ -148,6 +149,7 @@ uint32_t WorldImpl::attachShape(uint32_t body, const ShapeDef& def, const char* 
 
 void WorldImpl::releaseShape(uint32_t index) {
   shape_alive[index] = 0;
+  ++layout_version;
   const ShapeId old = shapes[index].id;
   shapes[index] = BodyShape{};
   shapes[index].id = old;  // the next shape in this slot gets a new generation

@@ -188,6 +188,34 @@ struct DrawOptions {
   std::span<const Transform> transforms;
 };
 
+// Queries (World::rayCast, ...): a shape is found when it passes the query's filter:
+// (shape.category & filter.mask) != 0 and (filter.category & shape.mask) != 0. Sensors are left out
+// unless `sensors` is set.
+struct QueryFilter {
+  uint64_t category = 1;
+  uint64_t mask = ~uint64_t{0};
+  bool sensors = false;
+};
+struct RayHit {
+  ShapeId shape;
+  BodyId body;
+  Vec2 point = Vec2::Zero();   // world [m]
+  Vec2 normal = Vec2::Zero();  // the surface's outward unit normal at the point
+  double fraction = 0.0;       // along from → to, 0 … 1
+};
+// An explosion at `position` (Box2D 3.1's b2World_Explode): every dynamic body's shapes within
+// radius + falloff get an impulse away from the centre at their closest point, of
+//   impulse · (the width they show to the centre) · scale,  scale 1 within `radius`, falling
+//   linearly to 0 at radius + falloff
+// (`impulse` per metre of width [N·s/m]). Returns the bodies pushed, each once, in slot order.
+struct ExplosionDef {
+  Vec2 position = Vec2::Zero();
+  double radius = 1.0;   // [m] > 0
+  double falloff = 0.0;  // [m] ≥ 0
+  double impulse = 1.0;  // [N·s/m] ≥ 0
+  QueryFilter filter;
+};
+
 struct WorldImpl;
 
 class World {
@@ -339,6 +367,22 @@ class World {
 
   // Topmost body with a shape that contains the world point (origin.md §7 point-in-shape), for picking.
   std::optional<BodyId> bodyAt(const Vec2& point) const;
+
+  // --- queries (world_query.cpp): exact on every shape kind, served by a bounding-volume tree kept
+  // between calls (built on the first query). Disabled bodies are never found.
+  // The closest hit of the segment from → to (a ray starting inside a shape does not hit it; a chain
+  // is hit from its front side only).
+  std::optional<RayHit> rayCast(const Vec2& from, const Vec2& to, const QueryFilter& filter = {}) const;
+  std::vector<RayHit> rayCastAll(const Vec2& from, const Vec2& to, const QueryFilter& filter = {}) const;  // by fraction
+  std::vector<ShapeId> queryBox(const Aabb& box, const QueryFilter& filter = {}) const;  // shapes overlapping it
+  std::vector<ShapeId> queryPoint(const Vec2& point, const QueryFilter& filter = {}) const;  // shapes containing it
+  // Shapes overlapping `shape` placed by `xf` (circle, box, polygon, capsule).
+  std::vector<ShapeId> overlap(const Shape& shape, const Transform& xf, const QueryFilter& filter = {}) const;
+  // `shape` placed by `xf` moved by `translation`: the first shape it touches, at which fraction.
+  std::optional<RayHit> shapeCast(const Shape& shape, const Transform& xf, const Vec2& translation,
+                                  const QueryFilter& filter = {}) const;
+  // An explosion at `position` (ExplosionDef above); returns the bodies pushed, each once, in slot order.
+  std::vector<BodyId> explode(const ExplosionDef& def);
   std::vector<ContactInfo> contacts() const;  // manifolds of the last step
   void draw(DebugDraw& dd, const DrawOptions& options = {}) const;
 
