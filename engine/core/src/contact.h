@@ -37,6 +37,11 @@ struct Contact {
   uint32_t shape_a = 0, shape_b = 0;  // shape slots: the contact's key (shape_a < shape_b)
   int count = 0;
   bool block = false;     // sequential impulses solve the two points together (contact_solver.cpp)
+  // Events (contact_events.cpp): the shapes touch (from the first step a point overlapped until the
+  // contact ends, so that a resting contact does not flicker); a one-way platform let the other
+  // shape through, and keeps doing so until the contact ends (pre_solve.cpp).
+  bool touching = false;
+  bool passing = false;
   Vec2u normal = Vec2::Zero();
   ContactPoint points[2];
   double restitution = 0.0;
@@ -56,6 +61,7 @@ struct ContactKey {
   uint32_t a, b;      // body slots
   uint8_t count;      // contact points
   bool deep_overlap;  // some point overlaps by more than slop + kDeepOverlapMargin
+  bool disabled;      // by a one-way platform or a pre-solve callback, for this step (pre_solve.cpp)
 };
 
 // A solved contact's bodies, noted once when the solvers are chosen (contact_solver.cpp), so that

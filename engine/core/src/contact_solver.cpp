@@ -362,6 +362,7 @@ void chooseSolvers(WorldImpl& w) {
       prefetchBody(w.contact_keys[k + 8].b);
     }
     const ContactKey& c = w.contact_keys[k];
+    if (c.disabled) continue;  // pre_solve.cpp
     const bool a = w.isActive(c.a), b = w.isActive(c.b);
     if (!a && !b) continue;
     w.solved.push_back(k);

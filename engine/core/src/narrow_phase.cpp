@@ -37,6 +37,11 @@ void narrowPhase(WorldImpl& w) {
   w.contact_keys.clear();
   size_t old = 0;
   const auto& prev = w.previous_contacts;
+  // Events: only when some shape asks for them (or every contact does).
+  const bool events = w.every_contact_event || w.event_shapes > 0;
+  w.contact_events.clear();
+  w.event_contacts.clear();
+  if (events) w.previous_matched.assign(prev.size(), 0);
   for (const BodyPair& pair : w.pairs) {
     const WorldImpl::ShapeView& va = w.shape_views[pair.a];
     const WorldImpl::ShapeView& vb = w.shape_views[pair.b];
@@ -62,6 +67,7 @@ void narrowPhase(WorldImpl& w) {
       if (had) {
         w.contacts.push_back(prev[old]);
         addKey(w.contact_keys, prev[old]);
+        if (events) w.previous_matched[old] = 1;
       }
       continue;
     }
@@ -101,6 +107,14 @@ void narrowPhase(WorldImpl& w) {
     c.friction = std::sqrt(sa.material.friction * sb.material.friction);
     c.static_friction = std::sqrt(sa.material.static_friction * sb.material.static_friction);
     addKey(w.contact_keys, c);
+    // Touching from the first step a point overlaps until the contact ends (contact.h).
+    c.touching = (had && prev[old].touching) || c.points[0].separation <= 0.0 || (c.count == 2 && c.points[1].separation <= 0.0);
+    c.passing = had && prev[old].passing;
+    if (events) {
+      if (had) w.previous_matched[old] = 1;
+      if (c.touching && !(had && prev[old].touching) && w.wantsEvents(pair.a, pair.b))
+        contactBegins(w, static_cast<uint32_t>(w.contacts.size() - 1));
+    }
     if (had) {
       for (int i = 0; i < c.count; ++i)
         for (int j = 0; j < prev[old].count; ++j)
@@ -115,6 +129,11 @@ void narrowPhase(WorldImpl& w) {
           }
     }
   }
+  if (events)  // contacts of the last step that did not continue
+    for (size_t k = 0; k < prev.size(); ++k)
+      if (!w.previous_matched[k] && prev[k].touching && w.shape_alive[prev[k].shape_a] && w.shape_alive[prev[k].shape_b] &&
+          w.wantsEvents(prev[k].shape_a, prev[k].shape_b))
+        contactEnds(w, prev[k]);
 }
 
 }  // namespace rigidlab

@@ -6,6 +6,7 @@
 namespace rigidlab {
 
 struct WorldImpl;
+struct Contact;
 
 void integrate(WorldImpl& w, double dt);   // integrator.cpp      origin.md §5
 void guardNonFinite(WorldImpl& w, const char* stage);  // nan_guard.cpp  after integrate and at the end
@@ -18,6 +19,13 @@ void findPairs(WorldImpl& w);              // broad_phase.cpp     origin.md §7
 // by default. Off rebuilds every step: the same pairs, for tests.
 void usePairCache(bool on);
 void narrowPhase(WorldImpl& w);            // narrow_phase.cpp    origin.md §7
+// Contact events (contact_events.cpp): a contact that begins or ends, from the narrow phase's merge
+// of this step's contacts with the last step's; their impulses once the solve is done.
+void contactBegins(WorldImpl& w, uint32_t contact);
+void contactEnds(WorldImpl& w, const Contact& previous);
+void finishContactEvents(WorldImpl& w);
+void preSolve(WorldImpl& w);               // pre_solve.cpp       one-way platforms, the pre-solve callback
+void updateSensors(WorldImpl& w);          // sensor.cpp          what is in each sensor
 void solveContacts(WorldImpl& w);          // contact_solver.cpp  origin.md §8–10, calls softStep
 void softStep(WorldImpl& w);               // soft_step.cpp       the contacts in w.soft_solved
 // Chooses the soft step's AVX2 or baseline passes for this process (by default AVX2 where the

@@ -19,8 +19,8 @@
 namespace rigidlab {
 
 // ---------------------------------------------------------------------------------------------
-// The step: integrate → find pairs → narrow phase → solve contacts and joints → correct positions →
-// break joints → sleep → expire forces.
+// The step: integrate → find pairs → narrow phase → pre-solve → solve contacts and joints → correct
+// positions → break joints → events and sensors → sleep → expire forces.
 
 namespace {
 
@@ -84,13 +84,21 @@ void World::step(double dt) {
     throw;
   }
   const auto t2 = Clock::now();
-  narrowPhase(w);  // origin.md §7: manifolds with feature ids
+  narrowPhase(w);  // origin.md §7: manifolds with feature ids; contact begin and end events
+  try {
+    preSolve(w);  // one-way platforms and the pre-solve callback disable contacts for this step
+  } catch (...) {
+    undoStep(w, incidents_before);
+    throw;
+  }
   const auto t3 = Clock::now();
   solveContacts(w);  // origin.md §8–10: contacts and joints; large islands by the soft step
   const auto t4 = Clock::now();
   correctPositions(w);  // origin.md §9: penetration and joint errors (the soft step's islands need none)
   guardNonFinite(w, "the contact solve");
   breakJoints(w);  // joints over their break force or torque go, reported (jointBreaks)
+  finishContactEvents(w);  // the events' impulses, now that they are known
+  updateSensors(w);  // what is in each sensor now: begin and end events
   const auto t5 = Clock::now();
   w.clock.advance(dt);
   ++w.layout_version;
@@ -355,25 +363,40 @@ std::optional<BodyId> World::bodyAt(const Vec2& point) const {
   return std::nullopt;
 }
 
+namespace {
+
+ContactInfo infoOf(const WorldImpl& w, const Contact& c) {
+  ContactInfo info;
+  info.a = w.bodies[c.a].id;
+  info.b = w.bodies[c.b].id;
+  info.shape_a = w.shapes[c.shape_a].id;
+  info.shape_b = w.shapes[c.shape_b].id;
+  info.normal = c.normal;
+  info.count = c.count;
+  info.touching = c.touching;
+  for (int i = 0; i < c.count; ++i) {
+    info.points[i] = c.points[i].point;
+    info.separations[i] = c.points[i].separation;
+    info.normal_impulses[i] = c.points[i].step_normal_impulse;
+    info.tangent_impulses[i] = c.points[i].step_tangent_impulse;
+    info.ids[i] = c.points[i].id;
+  }
+  return info;
+}
+
+}  // namespace
+
+std::vector<ContactInfo> World::contactsOf(BodyId body) const {
+  impl_->get(body);
+  std::vector<ContactInfo> out;
+  for (const Contact& c : impl_->contacts)
+    if (c.touching && (c.a == body.index || c.b == body.index)) out.push_back(infoOf(*impl_, c));
+  return out;
+}
+
 std::vector<ContactInfo> World::contacts() const {
   std::vector<ContactInfo> out;
-  for (const Contact& c : impl_->contacts) {
-    ContactInfo info;
-    info.a = impl_->bodies[c.a].id;
-    info.b = impl_->bodies[c.b].id;
-    info.shape_a = impl_->shapes[c.shape_a].id;
-    info.shape_b = impl_->shapes[c.shape_b].id;
-    info.normal = c.normal;
-    info.count = c.count;
-    for (int i = 0; i < c.count; ++i) {
-      info.points[i] = c.points[i].point;
-      info.separations[i] = c.points[i].separation;
-      info.normal_impulses[i] = c.points[i].step_normal_impulse;
-      info.tangent_impulses[i] = c.points[i].step_tangent_impulse;
-      info.ids[i] = c.points[i].id;
-    }
-    out.push_back(info);
-  }
+  for (const Contact& c : impl_->contacts) out.push_back(infoOf(*impl_, c));
   return out;
 }
 

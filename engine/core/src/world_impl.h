@@ -138,6 +138,22 @@ struct WorldImpl {
 
   std::unique_ptr<BroadPhase> broad_phase;
   std::vector<Proxy> proxies;
+  // Events (contact_events.cpp, sensor.cpp, pre_solve.cpp). The counters say whether any shape asks
+  // for them, so that a world without events does none of this work.
+  bool every_contact_event = false;
+  uint32_t event_shapes = 0, presolve_shapes = 0, sensor_shapes = 0;
+  std::vector<World::ContactEvent> contact_events;
+  std::vector<uint32_t> event_contacts;  // per event: its contact's index (begin and hit: impulses after the solve)
+  std::vector<char> previous_matched;    // per previous contact: it continues (narrow_phase.cpp)
+  std::vector<World::SensorEvent> sensor_events;
+  std::vector<std::vector<ShapeId>> sensor_overlaps;  // per shape slot, for sensors: what is in it
+  World::PreSolveFn pre_solve;
+  void countShape(const BodyShape& s, int sign);  // the counters above, as a shape comes or goes
+  bool wantsEvents(uint32_t shape_a, uint32_t shape_b) const {
+    return every_contact_event || shapes[shape_a].contact_events || shapes[shape_b].contact_events ||
+           shapes[shape_a].hit_events || shapes[shape_b].hit_events;
+  }
+
   // The queries' tree (world_query.cpp): a leaf per shape slot, synced with the shapes' boxes when
   // a query comes after anything moved (layout_version counts steps and edits).
   AabbTree tree;

@@ -121,6 +121,15 @@ uint32_t WorldImpl::attachShape(uint32_t body, const ShapeDef& def, const char* 
   s.filter = def.filter;
   s.default_filter = def.filter == Filter{};
   s.sensor = def.sensor;
+  s.contact_events = def.contact_events;
+  s.hit_events = def.hit_events;
+  s.hit_speed = requireNonNegative("hit_speed", def.hit_speed);
+  if (def.one_way) {
+    requireFinite("one_way", *def.one_way);
+    if (!(def.one_way->norm() > 0.0)) throw InputError("one_way", "one_way must be a direction, got " + formatVec(*def.one_way));
+    s.one_way = def.one_way->normalized();
+  }
+  s.pre_solve = def.pre_solve;
   s.body = b.id;
   uint32_t index;
   if (!free_shapes.empty()) {
@@ -136,6 +145,7 @@ uint32_t WorldImpl::attachShape(uint32_t body, const ShapeDef& def, const char* 
     shape_alive.push_back(1);
   }
   b.shapes.push_back(shapes[index].id);
+  countShape(shapes[index], +1);
   ++layout_version;
   try {
     updateMass(b, field, value);
@@ -148,6 +158,8 @@ uint32_t WorldImpl::attachShape(uint32_t body, const ShapeDef& def, const char* 
 }
 
 void WorldImpl::releaseShape(uint32_t index) {
+  countShape(shapes[index], -1);
+  if (index < sensor_overlaps.size()) sensor_overlaps[index].clear();
   shape_alive[index] = 0;
   ++layout_version;
   const ShapeId old = shapes[index].id;
@@ -230,9 +242,44 @@ void World::setShapeDensity(ShapeId id, double density) {
 void World::setShapeSensor(ShapeId id, bool sensor) {
   impl_->requireUnlocked("setShapeSensor");
   BodyShape& s = impl_->get(id);
+  impl_->countShape(s, -1);
   s.sensor = sensor;
+  impl_->countShape(s, +1);
   impl_->updateMass(impl_->bodies[s.body.index], "density", s.density);  // the CCD bounds change
   impl_->wakeIsland(s.body.index);
+}
+
+void World::setShapeEvents(ShapeId id, bool contact_events, bool hit_events, double hit_speed) {
+  impl_->requireUnlocked("setShapeEvents");
+  BodyShape& s = impl_->get(id);
+  requireNonNegative("hit_speed", hit_speed);
+  impl_->countShape(s, -1);
+  s.contact_events = contact_events;
+  s.hit_events = hit_events;
+  s.hit_speed = hit_speed;
+  impl_->countShape(s, +1);
+}
+
+void World::setShapeOneWay(ShapeId id, std::optional<Vec2> normal) {
+  impl_->requireUnlocked("setShapeOneWay");
+  BodyShape& s = impl_->get(id);
+  if (normal) {
+    requireFinite("one_way", *normal);
+    if (!(normal->norm() > 0.0)) throw InputError("one_way", "one_way must be a direction, got " + formatVec(*normal));
+    normal = normal->normalized();
+  }
+  impl_->countShape(s, -1);
+  s.one_way = normal;
+  impl_->countShape(s, +1);
+  impl_->wakeIsland(s.body.index);
+}
+
+void World::setShapePreSolve(ShapeId id, bool on) {
+  impl_->requireUnlocked("setShapePreSolve");
+  BodyShape& s = impl_->get(id);
+  impl_->countShape(s, -1);
+  s.pre_solve = on;
+  impl_->countShape(s, +1);
 }
 
 std::vector<ShapeId> World::createChain(BodyId body, const ChainDef& def) {

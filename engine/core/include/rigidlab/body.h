@@ -119,6 +119,9 @@ struct BodyShape {
   BodyId body;
   bool sensor = false;
   bool default_filter = true;  // derived: `filter` is Filter{} (the narrow phase skips the test)
+  bool contact_events = false, hit_events = false, pre_solve = false;  // ShapeDef
+  double hit_speed = 1.0;
+  std::optional<Vec2> one_way;  // ShapeDef (unit, body coordinates)
   uint32_t chain = 0;      // chain segments: 1-based number of their chain (World::createChain), else 0
   ShapeId id;
   Material material;

@@ -23,6 +23,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -131,6 +132,17 @@ struct ShapeDef {
   Filter filter;
   // A sensor collides with nothing: it reports the shapes that overlap it (events, World::sensorOverlaps).
   bool sensor = false;
+  // Events (World::contactEvents): this shape's contacts beginning and ending; impacts of at least
+  // hit_speed [m/s] (the closing speed at the contact) as hit events.
+  bool contact_events = false;
+  bool hit_events = false;
+  double hit_speed = 1.0;
+  // A one-way platform: the unit normal, in body coordinates, of the side that other shapes stand
+  // on. Coming from the other side (or moving along the normal, or still inside), they pass
+  // through: the contact is disabled until it ends.
+  std::optional<Vec2> one_way;
+  // The world's pre-solve callback (World::setPreSolve) is asked about this shape's contacts.
+  bool pre_solve = false;
 };
 
 }  // namespace rigidlab

@@ -8,6 +8,7 @@
 // The step pipeline is in engine/core/src/world.cpp (World::step).
 #pragma once
 
+#include <functional>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -151,6 +152,7 @@ struct ContactInfo {
   double normal_impulses[2] = {0, 0};
   double tangent_impulses[2] = {0, 0};
   uint32_t ids[2] = {0, 0};  // feature ids, stable while the same features touch
+  bool touching = false;     // a point overlapped at some step since the contact began (not only speculative)
 };
 
 // A body frozen by the NaN firewall: which body, when, and why.
@@ -288,6 +290,9 @@ class World {
   void setShapeFilter(ShapeId id, const Filter& filter);
   void setShapeDensity(ShapeId id, double density);  // recomputes the body's mass
   void setShapeSensor(ShapeId id, bool sensor);
+  void setShapeEvents(ShapeId id, bool contact_events, bool hit_events, double hit_speed);  // ShapeDef
+  void setShapeOneWay(ShapeId id, std::optional<Vec2> normal);  // ShapeDef::one_way
+  void setShapePreSolve(ShapeId id, bool on);
   // A chain on a static body (docs/physics.md "Chains"): one chain segment per pair of consecutive
   // points, each knowing its neighbours so that bodies slide over the joints without catching.
   // One-sided: the surface faces the right of the direction from a point to the next, so ground
@@ -384,6 +389,40 @@ class World {
   // An explosion at `position` (ExplosionDef above); returns the bodies pushed, each once, in slot order.
   std::vector<BodyId> explode(const ExplosionDef& def);
   std::vector<ContactInfo> contacts() const;  // manifolds of the last step
+  std::vector<ContactInfo> contactsOf(BodyId body) const;  // its touching contacts (separation ≤ 0 at some point since they began)
+
+  // --- events of the last step (contact_events.cpp, sensor.cpp), in a deterministic order (by
+  // shape pair; sensors by sensor, then visitor). Contact events are kept for shapes flagged with
+  // contact_events / hit_events, or for every contact after setContactEvents(true); nothing is kept
+  // (or computed) otherwise.
+  struct ContactEvent {
+    enum class Kind : uint8_t { Begin, End, Hit };
+    Kind kind = Kind::Begin;
+    ShapeId shape_a, shape_b;
+    BodyId a, b;
+    Vec2 normal = Vec2::Zero();  // unit, from a to b
+    int count = 0;
+    Vec2 points[2] = {Vec2::Zero(), Vec2::Zero()};
+    Vec2 point = Vec2::Zero();   // the points' middle
+    // Begin and hit: the closing speed along the normal at the start of the step [m/s] (> 0: approaching).
+    double approach_speed = 0.0;
+    // Begin and hit: the normal and tangent impulse the step applied in all [N·s].
+    double normal_impulse = 0.0, tangent_impulse = 0.0;
+  };
+  const std::vector<ContactEvent>& contactEvents() const;
+  void setContactEvents(bool every_contact);
+  struct SensorEvent {
+    bool begin = true;  // false: end
+    ShapeId sensor, visitor;
+    BodyId sensor_body, visitor_body;
+  };
+  const std::vector<SensorEvent>& sensorEvents() const;
+  std::vector<ShapeId> sensorOverlaps(ShapeId sensor) const;  // the shapes in it now (sorted by slot)
+  // Pre-solve: called during the step, after the contacts are found and before they are solved, for
+  // every contact of a shape flagged pre_solve; returning false disables the contact for this step.
+  // It must not edit the world. An exception it throws undoes the step and propagates.
+  using PreSolveFn = std::function<bool(const ContactInfo&)>;
+  void setPreSolve(PreSolveFn callback);
   void draw(DebugDraw& dd, const DrawOptions& options = {}) const;
 
  private:
