@@ -25,13 +25,14 @@
 namespace rigidlab::app {
 namespace {
 
-constexpr const char* kHelp = R"(usage: rigidlab bench [SCENE...] [--reps R] [--json] [--compare] [--peers DIR]
+constexpr const char* kHelp = R"(usage: rigidlab bench [SCENE...] [--reps R] [--steps N] [--json] [--compare] [--peers DIR]
                       [--solver NAME] [--substeps N] [--iterations N]
 
 Times benchmark scenes (all of them without SCENE arguments), each in its own process. Per scene:
 median and p95 ms per step (only World::step is timed), setup time, the per-stage breakdown,
 contacts, calls into Lua, peak memory, and the peers' stability metrics.
   --reps R      repetitions, each on a fresh world (default 3)
+  --steps N     steps per repetition (default: the scene's own, listed below)
   --json        one JSON line per scene, in the peer programs' format plus rigidlab's fields
   --compare     then run the peers (Box2D 2.4.1 and Chipmunk 7.0.3, DIR/run.sh, default
                 ../shared/peers beside the repository) and print rigidlab/peer ratios per scene
@@ -84,11 +85,14 @@ std::string runScene(const BenchScene& scene, int reps) {
     setups.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
     World& w = bw.get();
     BenchTracker tracker;
+    SuiteTracker suite;
+    const bool in_suite = isSuiteScene(scene.kind);
     std::vector<double> times;
     times.reserve(scene.steps);
     const long calls_before = bw.luaCalls();
     for (int i = 0; i < scene.steps; ++i) {
       const auto a = Clock::now();
+      if (bw.before_step) bw.before_step(w, i);
       w.step(scene.dt);
       times.push_back(std::chrono::duration<double, std::milli>(Clock::now() - a).count());
       const StepStats& s = w.stats();
@@ -100,6 +104,7 @@ std::string runScene(const BenchScene& scene, int reps) {
       stages.correct_ms += s.correct_ms;
       stages.finish_ms += s.finish_ms;
       if (!bw.bodies.empty()) tracker.observe(scene.kind, bw, i, scene.dt);
+      if (in_suite) suite.observe(w, i);
     }
     lua_calls += bw.luaCalls() - calls_before;
     steps += scene.steps;
@@ -118,7 +123,7 @@ std::string runScene(const BenchScene& scene, int reps) {
           break;
         }
     dynamic = w.stats().dynamic_bodies;
-    metrics = bw.bodies.empty() ? "{}" : benchMetrics(scene, bw, tracker);
+    metrics = in_suite ? suiteMetrics(w, suite) : bw.bodies.empty() ? "{}" : benchMetrics(scene, bw, tracker);
   }
   const double n = static_cast<double>(steps);
   std::string s = "{\"engine\": \"rigidlab\", \"version\": \"0.1.0\", \"build\": \"release\", \"scene\": \"" +
@@ -268,13 +273,15 @@ int compare(const std::vector<JsonValue>& ours, const std::filesystem::path& pee
 }  // namespace
 
 int benchCommand(const std::vector<std::string>& argv) {
-  const Args args("bench", argv, {"reps", "peers", "solver", "substeps", "iterations"}, {"json", "compare"});
+  const Args args("bench", argv, {"reps", "steps", "peers", "solver", "substeps", "iterations"}, {"json", "compare"});
   if (args.help()) {
     std::fputs(kHelp, stdout);
     for (const BenchScene& s : benchScenes()) std::printf("  %-12s %s\n", s.name.c_str(), s.description.c_str());
     return kExitOk;
   }
   const int reps = static_cast<int>(args.integer("reps", 1).value_or(3));
+  const auto steps = args.integer("steps", 1);
+  if (steps && *steps > 1000000) throw UsageError("bench: --steps must be at most 1000000");
   WorldDef& settings = benchSettings();
   if (const auto name = args.value("solver")) {
     const auto solver = parseContactSolver(*name);
@@ -299,7 +306,9 @@ int benchCommand(const std::vector<std::string>& argv) {
   for (size_t i = 0; i < selected.size(); ++i) {
     const BenchScene* s = selected[i];
     std::fprintf(stderr, "bench: [%zu/%zu] %s ...\n", i + 1, selected.size(), s->name.c_str());
-    const std::string line = runIsolated(*s, reps);
+    BenchScene scene = *s;
+    if (steps) scene.steps = static_cast<int>(*steps);
+    const std::string line = runIsolated(scene, reps);
     const auto v = parseJson(line);
     if (!v || v->get("error")) {
       std::fprintf(stderr, "bench: %s: %s\n", s->name.c_str(), line.c_str());

@@ -351,3 +351,29 @@ TEST_CASE("joints: validation names the field; removed with a body; bodies joine
   v.step(kDt);
   CHECK_FALSE(v.contacts().empty());
 }
+
+TEST_CASE("revolute reference_angle: the angle the limits and the spring count from") {
+  // A rod pinned to the world with reference_angle = 0.5: its joint angle reads -0.5, and a limit of
+  // [0, 0.1] turns it until its angle is within [0.5, 0.6].
+  World w;
+  w.setGravity(Vec2::Zero());
+  const BodyId rod = test::addBox(w, 0.1, 1.0, {0.0, -0.5});
+  JointDef j;
+  j.type = JointType::Revolute;
+  j.b = rod;  // a: the world
+  j.anchor_a = Vec2(0.0, 0.0);
+  j.reference_angle = 0.5;
+  const JointId id = w.createJoint(j);
+  CHECK(w.jointState(id).angle == Approx(-0.5).epsilon(1e-12));
+  j.enable_limit = true;
+  j.lower = 0.0;
+  j.upper = 0.1;
+  w.updateJoint(id, j);
+  for (int i = 0; i < 120; ++i) w.step(1.0 / 60.0);
+  const double angle = w.jointState(id).angle;
+  CHECK(angle > -1e-3);
+  CHECK(angle < 0.1 + 1e-3);
+  CHECK(w.body(rod).angle == Approx(0.5 + angle).epsilon(1e-9));  // the world's angle is 0
+  j.reference_angle = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THROWS_AS(w.createJoint(j), InputError);
+}

@@ -155,6 +155,7 @@ JointId World::createJoint(const JointDef& in) {
     j.local_a = xa.applyInverse(d.anchor_a);
     j.local_b = xb.applyInverse(d.anchor_b);
     j.reference_angle = angleOf(w, j.b) - angleOf(w, j.a);
+    if (d.reference_angle && d.type != JointType::Motor) j.reference_angle = requireFinite("reference_angle", *d.reference_angle);
     if (d.type == JointType::Prismatic || d.type == JointType::Wheel) {
       requireFinite("axis", d.axis);
       if (!(d.axis.norm() > 0.0)) throw InputError("axis", "axis must not be zero, got " + formatVec(d.axis));

@@ -147,6 +147,7 @@ uint32_t WorldImpl::attachShape(uint32_t body, const ShapeDef& def, const char* 
   b.shapes.push_back(shapes[index].id);
   countShape(shapes[index], +1);
   ++layout_version;
+  ++static_version;
   try {
     updateMass(b, field, value);
   } catch (...) {

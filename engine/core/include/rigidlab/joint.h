@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "rigidlab/body.h"
@@ -53,7 +54,11 @@ struct JointDef {
   double break_torque = std::numeric_limits<double>::infinity();  // [N·m]
   std::string name;
 
-  // Limits: revolute angle (b's angle relative to a, from its value at creation) [rad]; prismatic
+  // Revolute, prismatic, weld, wheel: b's angle relative to a that counts as angle 0 (the limits,
+  // the revolute spring's rest angle, the weld's glued angle) [rad]; default: the angle at creation.
+  std::optional<double> reference_angle;
+
+  // Limits: revolute angle (b's angle relative to a, from reference_angle) [rad]; prismatic
   // and wheel translation along the axis [m]; lower ≤ upper.
   bool enable_limit = false;
   double lower = 0.0, upper = 0.0;
