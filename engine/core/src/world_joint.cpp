@@ -14,6 +14,11 @@ Transform transformOf(const WorldImpl& w, uint32_t slot) {
 }
 double angleOf(const WorldImpl& w, uint32_t slot) { return slot == kWorldSlot ? 0.0 : w.bodies[slot].angle; }
 
+// A force or torque bound: ≥ 0, and infinity means unlimited (a motor that always reaches its speed).
+void requireBound(const char* field, double x) {
+  if (!(x >= 0.0)) throw InputError(field, std::string(field) + " must be >= 0 (or inf: unlimited), got " + formatNumber(x));
+}
+
 // The tunables every type shares, and each type's own: refused with the field's name and value.
 void validateTunables(const JointDef& d) {
   if (!(d.break_force > 0.0) || std::isnan(d.break_force))
@@ -25,8 +30,8 @@ void validateTunables(const JointDef& d) {
   if (d.enable_limit && d.lower > d.upper && d.type != JointType::Distance)
     throw InputError("lower", "lower (" + formatNumber(d.lower) + ") must not exceed upper (" + formatNumber(d.upper) + ")");
   requireFinite("motor_speed", d.motor_speed);
-  requireNonNegative("max_motor_torque", d.max_motor_torque);
-  requireNonNegative("max_motor_force", d.max_motor_force);
+  requireBound("max_motor_torque", d.max_motor_torque);
+  requireBound("max_motor_force", d.max_motor_force);
   requireNonNegative("spring_hertz", d.spring_hertz);
   requireNonNegative("spring_damping", d.spring_damping);
   requireNonNegative("linear_hertz", d.linear_hertz);
@@ -39,8 +44,8 @@ void validateTunables(const JointDef& d) {
   requireFinite("angular_offset", d.angular_offset);
   requireFinite("linear_velocity", d.linear_velocity);
   requireFinite("angular_velocity", d.angular_velocity);
-  requireNonNegative("max_force", d.max_force);
-  requireNonNegative("max_torque", d.max_torque);
+  requireBound("max_force", d.max_force);
+  requireBound("max_torque", d.max_torque);
   if (d.type == JointType::Distance) {
     requireNonNegative("min_length", d.min_length);
     if (!(d.max_length >= 0.0)) throw InputError("max_length", "max_length must be >= 0, got " + formatNumber(d.max_length));

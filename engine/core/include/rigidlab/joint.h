@@ -64,6 +64,7 @@ struct JointDef {
   double lower = 0.0, upper = 0.0;
   // Motor: revolute and wheel turn b relative to a at motor_speed [rad/s] with at most
   // max_motor_torque [N·m]; prismatic slides at motor_speed [m/s] with at most max_motor_force [N].
+  // Bounds here and below may be infinite (unlimited).
   bool enable_motor = false;
   double motor_speed = 0.0, max_motor_torque = 0.0, max_motor_force = 0.0;
   // Spring: revolute (towards the angle at creation), prismatic (towards translation 0), wheel
