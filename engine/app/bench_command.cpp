@@ -75,6 +75,9 @@ int benchCommand(const std::vector<std::string>& argv) {
     for (const BenchScene& s : benchScenes()) selected.push_back(&s);
 
   const bool json = args.flag("json");
+  const int v3_threads = static_cast<int>(args.integer("v3-threads", 1).value_or(2));
+  if (args.value("v3-threads") && !args.value("v3") && !args.flag("compare"))
+    throw UsageError("bench: --v3-threads needs --v3 PROGRAM (or --compare with RIGIDLAB_V3_BENCH set)");
   std::optional<std::string> v3 = args.value("v3");
   if (!v3 && args.flag("compare"))
     if (const char* env = std::getenv("RIGIDLAB_V3_BENCH"); env && *env) v3 = env;
@@ -84,8 +87,7 @@ int benchCommand(const std::vector<std::string>& argv) {
       scenes.push_back(*s);
       if (steps) scenes.back().steps = static_cast<int>(*steps);
     }
-    const int threads = static_cast<int>(args.integer("v3-threads", 1).value_or(2));
-    return compareV3(scenes, *v3, reps, threads, json);
+    return compareV3(scenes, *v3, reps, v3_threads, json);
   }
   std::vector<JsonValue> results;
   for (size_t i = 0; i < selected.size(); ++i) {

@@ -400,8 +400,22 @@ TEST_CASE("sleeping: bodies created asleep cost nothing until touched, and only 
     wall.push_back(w.createBody(d));
   }
   for (BodyId id : wall) CHECK_FALSE(w.body(id).awake);
+  // Shapes added before the first step keep a body created asleep asleep (a compound at rest)...
+  BodyDef bare;
+  bare.awake = false;
+  bare.position = {5.0, -2.0};
+  const BodyId compound = w.createBody(bare);
+  ShapeDef piece;
+  piece.shape = makeBox(0.4, 0.4);
+  w.createShape(compound, piece);
+  CHECK_FALSE(w.body(compound).awake);
   w.step(1.0 / 60.0);
   CHECK(w.stats().awake_bodies == 0);
+  // ...but once stepped, an added shape wakes it: it may overlap what it rests against.
+  w.createShape(compound, piece);
+  CHECK(w.body(compound).awake);
+  w.step(1.0 / 60.0);
+  w.destroyBody(compound);
   // Moving bodies and bodies of a world that does not sleep start awake whatever they ask.
   d.position = {20.0, 0.0};
   d.velocity = {1.0, 0.0};

@@ -132,6 +132,8 @@ BodyId World::createBody(const BodyDef& def) {
   }
   const BodyId id = w.bodies[index].id;
   w.body_joints.resize(w.bodies.size());
+  w.created_asleep_before.resize(w.bodies.size());
+  w.created_asleep_before[index] = w.bodies[index].awake ? 0 : w.step_count + 1;
   if (def.shape) {
     try {
       w.attachShape(index, shape_def, def.mass ? "mass" : "density", def.mass.value_or(def.density));

@@ -74,6 +74,10 @@ struct WorldImpl {
   SimClock clock;
   double dt = 0.0;  // of the step in progress [s]
   long step_count = 0;
+  // Per body slot: step_count + 1 if the body was created asleep (BodyDef::awake = false) since the
+  // last step, else older. Shapes added to such a body before it is stepped do not wake it: the
+  // caller said it starts at rest, as Box2D does (createShape).
+  std::vector<long> created_asleep_before;
   uint32_t next_uid = 1;
   bool locked = false;  // true while step() runs
   StepStats stats;
