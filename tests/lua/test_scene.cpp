@@ -154,8 +154,8 @@ TEST_CASE("every scene mistake is one message: file:line: function: what, with t
       {"function PopulateWorld(world)\n  world:add_box{ width = 1, height = 1, restitution = 1.5 }\nend", 0,
        "test.lua:2: add_box: restitution must be between 0 and 1, got 1.5"},
       {"function PopulateWorld(world)\n  world:add_polygon{ vertices = {{0,0},{1,0},{1,1},{0.5,0.2},{0,1}} }\nend", 0,
-       "test.lua:2: add_polygon: polygon is not convex: it turns clockwise at vertices[4] (0.5, 0.2) (split concave "
-       "shapes into convex pieces)"},
+       "test.lua:2: add_polygon: polygon is not convex: it turns clockwise at vertices[4] (0.5, 0.2) (give concave = "
+       "true to make the body of convex pieces)"},
       {"function PopulateWorld(world)\n  world:add_polygon{ vertices = {{0,0},{1,0},'x'} }\nend", 0,
        "test.lua:2: add_polygon: vertices[3] must be a point {x, y}, got \"x\""},
       {"function PopulateWorld(world)\n  world:add_spring{ a = 5, anchor = {0, 0}, stiffness = 1 }\nend", 0,
