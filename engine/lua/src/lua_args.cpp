@@ -152,7 +152,8 @@ sol::object makeVec(lua_State* L, const Vec2& v) {
 
 // ---------------------------------------------------------------------------------------------
 
-Options::Options(lua_State* L, std::string_view function, const sol::object& arg, std::vector<std::string_view> known)
+Options::Options(lua_State* L, std::string_view function, const sol::object& arg, std::vector<std::string_view> known,
+                 const Synonyms& synonyms)
     : L_(L), function_(function) {
   if (arg.get_type() != sol::type::table)
     lua::fail(L, function, "expects a table of named options, e.g. " + std::string(function) + "{ " +
@@ -176,7 +177,9 @@ Options::Options(lua_State* L, std::string_view function, const sol::object& arg
   lua_pop(L, 1);
   if (!unknown.empty()) {
     std::sort(unknown.begin(), unknown.end());
-    const std::string suggestion = closestName(unknown.front(), known);
+    std::string suggestion = closestName(unknown.front(), known);
+    for (const auto& [name, meant] : synonyms)
+      if (name == unknown.front()) suggestion = std::string(meant);
     lua::fail(L, function, "unknown option '" + unknown.front() + "'" +
                                (suggestion.empty() ? "" : " (did you mean '" + suggestion + "'?)"));
   }

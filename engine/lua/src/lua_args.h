@@ -102,8 +102,12 @@ std::vector<Vec2> checkPoints(lua_State* L, std::string_view function, std::stri
 // A table of named options, checked against the names a function accepts.
 class Options {
  public:
-  // Fails unless `arg` is a table whose keys are all in `known` (unknown: "unknown option 'x'").
-  Options(lua_State* L, std::string_view function, const sol::object& arg, std::vector<std::string_view> known);
+  // Fails unless `arg` is a table whose keys are all in `known` (unknown: "unknown option 'x'",
+  // with closestName's suggestion, or the one `synonyms` gives for a name of a similar function:
+  // {"lower_angle", "lower"} for a prismatic joint).
+  using Synonyms = std::vector<std::pair<std::string_view, std::string_view>>;
+  Options(lua_State* L, std::string_view function, const sol::object& arg, std::vector<std::string_view> known,
+          const Synonyms& synonyms = {});
 
   bool has(std::string_view key) const;
   sol::object get(std::string_view key) const;

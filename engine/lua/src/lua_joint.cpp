@@ -93,6 +93,13 @@ std::vector<std::string_view> fieldsOf(JointType type) {
   return all;
 }
 
+[[noreturn]] void unknownField(lua_State* L, const LuaJoint& j, const std::string& k, const std::vector<std::string_view>& names) {
+  std::string hint = closestName(k, names);
+  for (const auto& [name, meant] : jointSynonyms(j.type))
+    if (name == k) hint = std::string(meant);
+  fail(L, kindName(j), "has no field '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
+}
+
 void update(lua_State* L, World& w, const LuaJoint& j, std::string_view function, const JointDef& def) {
   try {
     w.updateJoint(j.id, def);
@@ -138,10 +145,7 @@ int jointIndex(lua_State* L) {
   if (key.get_type() != sol::type::string) fail(L, "joint", "fields are named by strings, got " + describe(key));
   const std::string k = key.as<std::string>();
   const std::vector<std::string_view> names = fieldsOf(self.type);
-  if (!contains(names, k)) {
-    const std::string hint = closestName(k, names);
-    fail(L, kindName(self), "has no field '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
-  }
+  if (!contains(names, k)) unknownField(L, self, k, names);
   Scene::Impl& scene = *self.scene;
   const World& w = liveWorld(L, scene, "joint." + k);
   if (k == "kind") {
@@ -193,8 +197,7 @@ int jointNewIndex(lua_State* L) {
   const bool writable = contains(api::kJointWritable, k) || (contains(own, k) && !contains(api::kJointReadOnly, k));
   if (!writable) {
     if (contains(names, k)) fail(L, function, "is read-only");
-    const std::string hint = closestName(k, names);
-    fail(L, kindName(self), "has no field '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
+    unknownField(L, self, k, names);
   }
   requireIdle(L, *self.scene, function);
   World& w = liveWorld(L, *self.scene, function);
@@ -266,6 +269,15 @@ std::vector<std::pair<std::string_view, std::string_view>> jointRenames(JointTyp
     return {};
   }
   return {{"anchor_a", "anchor"}};
+}
+
+Options::Synonyms jointSynonyms(JointType type) {
+  if (type == JointType::Revolute)
+    return {{"lower", "lower_angle"}, {"upper", "upper_angle"}, {"max_motor_force", "max_motor_torque"}};
+  if (type == JointType::Prismatic)
+    return {{"lower_angle", "lower"}, {"upper_angle", "upper"}, {"max_motor_torque", "max_motor_force"}};
+  if (type == JointType::Wheel) return {{"lower_angle", "lower"}, {"upper_angle", "upper"}, {"max_motor_force", "max_motor_torque"}};
+  return {};
 }
 
 void registerJointType(lua_State* L) {

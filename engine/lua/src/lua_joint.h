@@ -45,6 +45,10 @@ bool hasLimits(JointType type);  // revolute, prismatic, wheel, distance
 // (b omitted) has its anchors the other way round in the core (lua_world_joints.cpp).
 std::vector<std::pair<std::string_view, std::string_view>> jointRenames(JointType type, bool swapped);
 
+// The names of the same thing in the other joint types (revolute lower_angle, prismatic lower),
+// suggested for a name this type does not have.
+Options::Synonyms jointSynonyms(JointType type);
+
 // The core holds a joint pinned to the world with the world as its body a, so that its angle,
 // speed and translation are the body's own; Lua shows the body as `a` and the world as b = nil.
 inline bool pinnedToWorld(const JointDef& def) { return def.a.isNull() && !def.b.isNull(); }

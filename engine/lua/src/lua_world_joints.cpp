@@ -71,7 +71,8 @@ JointId jointOption(const Options& o, Scene::Impl& scene, std::string_view key) 
 int addJoint(lua_State* L, JointType type) {
   const char* function = jointFunction(type);
   Scene::Impl& scene = editedWorld(L, function);
-  const Options o(L, function, sol::stack_object(L, 2), joined({&api::kJointOptions, &jointOptions(type)}));
+  const Options o(L, function, sol::stack_object(L, 2), joined({&jointOptions(type), &api::kJointOptions}),
+                  jointSynonyms(type));
   World& w = *scene.world;
   JointDef d;
   d.type = type;
