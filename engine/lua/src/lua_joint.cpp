@@ -203,6 +203,7 @@ int jointNewIndex(lua_State* L) {
   World& w = liveWorld(L, *self.scene, function);
   JointDef def = w.joint(liveJoint(L, self, function));
   if (k == "name") {
+    if (value.get_type() != sol::type::string) fail(L, function, "must be a string, got " + describe(value));
     def.name = boundedString(L, 3, function, "", kNameBytes);
   } else {
     setJointField(L, function, "", *jointField(k), sol::object(value), def);
