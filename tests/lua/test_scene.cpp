@@ -53,6 +53,24 @@ double luaOscillatorError(double dt) {
   return err;
 }
 
+// A scene that fails: loaded (and stepped `steps` times), it must end with one line that starts
+// with `message`.
+struct Case {
+  const char* source;
+  int steps;
+  const char* message;
+};
+
+void checkMessages(const std::vector<Case>& cases) {
+  for (const Case& c : cases) {
+    CAPTURE(c.source);
+    const std::string message = errorOf(c.source, c.steps);
+    // One line, starting with the expected text (require's message goes on to list the folders).
+    CHECK(message.find('\n') == std::string::npos);
+    CHECK(message.substr(0, std::string(c.message).size()) == c.message);
+  }
+}
+
 }  // namespace
 
 TEST_CASE("a scene without Lua forces makes no call into Lua during a step") {
@@ -135,12 +153,7 @@ TEST_CASE("runs are deterministic: math.random is seeded by the host, body order
 }
 
 TEST_CASE("every scene mistake is one message: file:line: function: what, with the bad value") {
-  struct Case {
-    const char* source;
-    int steps;
-    const char* message;
-  };
-  const Case cases[] = {
+  checkMessages({
       {"function PopulateWorld(world)\n  world:add_circle{ radius = -1 }\nend", 0,
        "test.lua:2: add_circle: radius must be > 0, got -1"},
       {"function PopulateWorld(world)\n  world:add_box{ widht = 1, height = 2 }\nend", 0,
@@ -211,24 +224,12 @@ TEST_CASE("every scene mistake is one message: file:line: function: what, with t
        "test.lua:2: PopulateWorld: load: only text chunks can be loaded (mode \"t\"), got mode \"b\""},
       {"function PopulateWorld(world)\n  os.execute('true')\nend", 0,
        "test.lua:2: PopulateWorld: attempt to index a nil value (global 'os')"},
-  };
-  for (const Case& c : cases) {
-    CAPTURE(c.source);
-    const std::string message = errorOf(c.source, c.steps);
-    // One line, starting with the expected text (require's message goes on to list the folders).
-    CHECK(message.find('\n') == std::string::npos);
-    CHECK(message.substr(0, std::string(c.message).size()) == c.message);
-  }
+  });
 }
 
 TEST_CASE("shape, body type and joint mistakes are one message: file:line: function: the field and the value") {
-  struct Case {
-    const char* source;
-    int steps;
-    const char* message;
-  };
   // Line 2 makes what line 3 uses.
-  const Case cases[] = {
+  checkMessages({
       {"function PopulateWorld(world)\n  world:add_capsule{ a = {0, 0}, b = {1, 0}, radius = -1 }\nend", 0,
        "test.lua:2: add_capsule: radius must be > 0, got -1"},
       {"function PopulateWorld(world)\n  world:add_segment{ a = {0, 0}, b = {1, 0}, type = 'dynamic' }\nend", 0,
@@ -306,13 +307,7 @@ TEST_CASE("shape, body type and joint mistakes are one message: file:line: funct
       {"function PopulateWorld(world)\n  local b = world:add_circle{ radius = 1 }\n  world:add_force{ body = b, evaluate = "
        "function(s)\n    b.shapes[1].friction = 0 return 0, 0 end }\nend",
        1, "test.lua:4: shape.friction: not allowed while the world is stepping (from inside a force)"},
-  };
-  for (const Case& c : cases) {
-    CAPTURE(c.source);
-    const std::string message = errorOf(c.source, c.steps);
-    CHECK(message.find('\n') == std::string::npos);
-    CHECK(message.substr(0, std::string(c.message).size()) == c.message);
-  }
+  });
 }
 
 TEST_CASE("joints count against the scene's memory limit, and removed ones are given back") {

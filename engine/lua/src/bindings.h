@@ -6,6 +6,7 @@
 #include <new>
 #include <set>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -108,6 +109,57 @@ void pushHandle(lua_State* L, const T& value) {
   static_assert(std::is_trivially_destructible_v<T>, "a handle must need no finalizer (no __gc)");
   new (lua_newuserdatauv(L, sizeof(T), 0)) T(value);
   luaL_setmetatable(L, T::kMetatable);
+}
+
+// The handle of `value` in `cache` under `key`, made and kept there on first use: the same body,
+// shape or joint is the same Lua object while the cache holds it.
+template <typename T>
+sol::object cachedHandle(lua_State* L, sol::table& cache, uint64_t key, const T& value) {
+  sol::object cached = cache.raw_get<sol::object>(key);
+  if (cached.valid() && cached.get_type() != sol::type::lua_nil) return cached;
+  pushHandle(L, value);
+  sol::object handle = sol::stack::pop<sol::object>(L);
+  cache.raw_set(key, handle);
+  return handle;
+}
+
+// __eq of a handle type: two handles of one scene naming the same thing (T::*Key: uid, id).
+template <typename T, auto Key>
+int handlesEqual(lua_State* L) {
+  const T *a = toHandle<T>(L, 1), *b = toHandle<T>(L, 2);
+  lua_pushboolean(L, a && b && a->scene == b->scene && a->*Key == b->*Key);
+  return 1;
+}
+
+// __tostring of a handle type: Describe(handle), e.g. "revolute joint 'hinge'".
+template <typename T, std::string (*Describe)(const T&)>
+int handleToString(lua_State* L) {
+  const T* handle = toHandle<T>(L, 1);
+  const std::string text = handle ? Describe(*handle) : std::string("?");
+  lua_pushlstring(L, text.data(), text.size());
+  return 1;
+}
+
+// Pushes a list {handle(ids[1]), ...}.
+template <typename Id, typename Handle>
+void pushHandles(lua_State* L, const std::vector<Id>& ids, Handle handle) {
+  lua_createtable(L, static_cast<int>(ids.size()), 0);
+  for (size_t i = 0; i < ids.size(); ++i) {
+    handle(ids[i]).push(L);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+}
+
+// A method by name, from a table of them; nullptr if `name` is none of them.
+struct NamedFunction {
+  std::string_view name;
+  lua_CFunction function;
+};
+template <size_t N>
+lua_CFunction lookUp(const NamedFunction (&table)[N], std::string_view name) {
+  for (const NamedFunction& f : table)
+    if (f.name == name) return f.function;
+  return nullptr;
 }
 
 // Creates the metatable `name` in the registry with the given metamethods (nullptr: none) and

@@ -99,6 +99,31 @@ std::string closestName(std::string_view name, const std::vector<std::string_vie
   return best;
 }
 
+std::string fieldName(lua_State* L, std::string_view what, const sol::object& key) {
+  if (key.get_type() != sol::type::string) fail(L, what, "fields are named by strings, got " + describe(key));
+  return key.as<std::string>();
+}
+
+void noSuchField(lua_State* L, std::string_view what, const std::string& k, const std::vector<std::string_view>& names,
+                 std::string hint) {
+  if (hint.empty()) hint = closestName(k, names);
+  fail(L, what, "has no field '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
+}
+
+void requireWritable(lua_State* L, std::string_view what, const std::string& k,
+                     const std::vector<std::string_view>& readable, const std::vector<std::string_view>& writable) {
+  if (std::find(writable.begin(), writable.end(), k) != writable.end()) return;
+  if (std::find(readable.begin(), readable.end(), k) != readable.end()) fail(L, std::string(what) + "." + k, "is read-only");
+  noSuchField(L, what, k, writable);
+}
+
+std::string stringArg(lua_State* L, int index, std::string_view function, std::string_view what) {
+  if (lua_type(L, index) != LUA_TSTRING) fail(L, function, std::string(what) + " must be a string, got " + describe(L, index));
+  size_t length = 0;
+  const char* s = lua_tolstring(L, index, &length);
+  return std::string(s, length);
+}
+
 std::vector<std::string_view> joined(std::initializer_list<const std::vector<std::string_view>*> lists) {
   std::vector<std::string_view> all;
   for (const auto* list : lists) all.insert(all.end(), list->begin(), list->end());

@@ -61,6 +61,17 @@ std::string closestName(std::string_view name, const std::vector<std::string_vie
 // The names of several lists in one (a function's accepted options).
 std::vector<std::string_view> joined(std::initializer_list<const std::vector<std::string_view>*> lists);
 
+// Handle fields: the name of `handle.<key>`, or fails "<what>: fields are named by strings, got
+// 5"; "<what>: has no field 'x' (did you mean 'y'?)" with closestName's suggestion or `hint`; and
+// for a write "<what>.<k>: is read-only" unless `k` is writable (or has no field, as above).
+std::string fieldName(lua_State* L, std::string_view what, const sol::object& key);
+[[noreturn]] void noSuchField(lua_State* L, std::string_view what, const std::string& k,
+                              const std::vector<std::string_view>& names, std::string hint = "");
+void requireWritable(lua_State* L, std::string_view what, const std::string& k,
+                     const std::vector<std::string_view>& readable, const std::vector<std::string_view>& writable);
+// Argument `index`, a string: fails "<function>: <what> must be a string, got 5".
+std::string stringArg(lua_State* L, int index, std::string_view function, std::string_view what);
+
 // A vector from a vec2 table, {x = , y = } or {x, y}; nullopt if the value is none of these.
 std::optional<Vec2> toVec(lua_State* L, const sol::object& value);
 // Pushes a new vec2 table.

@@ -106,12 +106,12 @@ int setTarget(lua_State* L) {
 }
 
 lua_CFunction bodyMethod(std::string_view name) {
-  if (name == "apply_impulse") return guarded<applyImpulse>;
-  if (name == "apply_force") return guarded<applyForce>;
-  if (name == "add_shape") return addShapeMethod;
-  if (name == "set_target") return guarded<setTarget>;
-  if (name == "joints") return bodyJointsMethod;
-  return nullptr;
+  static const NamedFunction kMethods[] = {{"apply_impulse", guarded<applyImpulse>},
+                                           {"apply_force", guarded<applyForce>},
+                                           {"add_shape", addShapeMethod},
+                                           {"set_target", guarded<setTarget>},
+                                           {"joints", bodyJointsMethod}};
+  return lookUp(kMethods, name);
 }
 
 // The fields a body has for its one shape (the others of kShapeWritable stand for a property all
@@ -156,27 +156,19 @@ sol::object sharedShapeProperty(lua_State* L, const World& w, const Body& b, con
 }
 
 sol::object shapesList(lua_State* L, Scene::Impl& scene, const Body& b) {
-  lua_createtable(L, static_cast<int>(b.shapes.size()), 0);
-  for (size_t i = 0; i < b.shapes.size(); ++i) {
-    shapeHandle(L, scene, b.shapes[i]).push(L);
-    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
-  }
+  pushHandles(L, b.shapes, [&](ShapeId id) { return shapeHandle(L, scene, id); });
   return sol::stack::pop<sol::object>(L);
 }
 
 sol::object bodyIndex(lua_State* L, const LuaBody& self, const sol::stack_object& key) {
-  if (key.get_type() != sol::type::string) fail(L, "body", "fields are named by strings, got " + describe(key));
-  const std::string k = key.as<std::string>();
+  const std::string k = fieldName(L, "body", key);
   if (k == "removed") return sol::make_object(L, !worldOf(L, self, "body.removed").isValid(self.id));
   if (k == "id") return sol::make_object(L, self.uid);
   if (const lua_CFunction f = bodyMethod(k)) {
     lua_pushcfunction(L, f);
     return sol::stack::pop<sol::object>(L);
   }
-  if (std::find(kBodyReadable.begin(), kBodyReadable.end(), k) == kBodyReadable.end()) {
-    const std::string hint = closestName(k, kBodyReadable);
-    fail(L, "body", "has no field '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
-  }
+  if (std::find(kBodyReadable.begin(), kBodyReadable.end(), k) == kBodyReadable.end()) noSuchField(L, "body", k, kBodyReadable);
   const BodyId id = liveBody(L, self, "body." + k);
   const Body& b = worldOf(L, self, "body." + k).body(id);
   if (k == "position") return makeVec(L, b.position());
@@ -206,14 +198,9 @@ sol::object bodyIndex(lua_State* L, const LuaBody& self, const sol::stack_object
 }
 
 void bodyNewIndex(lua_State* L, const LuaBody& self, const sol::stack_object& key, const sol::stack_object& value) {
-  if (key.get_type() != sol::type::string) fail(L, "body", "fields are named by strings, got " + describe(key));
-  const std::string k = key.as<std::string>();
+  const std::string k = fieldName(L, "body", key);
   const std::string function = "body." + k;
-  if (std::find(kBodyWritable.begin(), kBodyWritable.end(), k) == kBodyWritable.end()) {
-    if (std::find(kBodyReadable.begin(), kBodyReadable.end(), k) != kBodyReadable.end()) fail(L, function, "is read-only");
-    const std::string hint = closestName(k, kBodyWritable);
-    fail(L, "body", "has no field '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
-  }
+  requireWritable(L, "body", k, kBodyReadable, kBodyWritable);
   requireIdle(L, *self.scene, function);
   const BodyId id = liveBody(L, self, function);
   World& w = worldOf(L, self, function);
@@ -299,33 +286,16 @@ int bodyNewIndexMeta(lua_State* L) {
   return 0;
 }
 
-int bodyToStringMeta(lua_State* L) {
-  const std::string text = bodyToString(selfBody(L, sol::stack_object(L, 1), "tostring"));
-  lua_pushlstring(L, text.data(), text.size());
-  return 1;
-}
-
-int bodyEqualMeta(lua_State* L) {
-  const LuaBody *a = toHandle<LuaBody>(L, 1), *b = toHandle<LuaBody>(L, 2);
-  lua_pushboolean(L, a && b && a->scene == b->scene && a->uid == b->uid);
-  return 1;
-}
-
 }  // namespace
 
 void registerBodyType(lua_State* L) {
-  registerHandleType(L, LuaBody::kMetatable, guarded<bodyIndexMeta>, guarded<bodyNewIndexMeta>, guarded<bodyToStringMeta>,
-                     guarded<bodyEqualMeta>);
+  registerHandleType(L, LuaBody::kMetatable, guarded<bodyIndexMeta>, guarded<bodyNewIndexMeta>, guarded<handleToString<LuaBody, bodyToString>>,
+                     guarded<handlesEqual<LuaBody, &LuaBody::uid>>);
 }
 
 sol::object bodyHandle(lua_State* L, Scene::Impl& scene, BodyId id) {
   const uint32_t uid = scene.world->body(id).uid;
-  sol::object cached = scene.handles.raw_get<sol::object>(uid);
-  if (cached.valid() && cached.get_type() != sol::type::lua_nil) return cached;
-  pushHandle(L, LuaBody{&scene, id, uid});
-  sol::object handle = sol::stack::pop<sol::object>(L);
-  scene.handles.raw_set(uid, handle);
-  return handle;
+  return cachedHandle(L, scene.handles, uid, LuaBody{&scene, id, uid});
 }
 
 BodyId liveBody(lua_State* L, const LuaBody& body, std::string_view function) {
@@ -348,8 +318,8 @@ BodyId bodyOption(lua_State* L, Scene::Impl& scene, std::string_view function, s
 
 std::string describeHandle(lua_State* L, int index) {
   if (const LuaBody* b = toHandle<LuaBody>(L, index)) return bodyToString(*b);
-  if (const LuaShape* s = toHandle<LuaShape>(L, index)) return describeShape(*s);
-  if (const LuaJoint* j = toHandle<LuaJoint>(L, index)) return describeJoint(*j);
+  if (const LuaShape* s = toHandle<LuaShape>(L, index)) return "a " + describeShape(*s);
+  if (const LuaJoint* j = toHandle<LuaJoint>(L, index)) return "a " + describeJoint(*j);
   if (const LuaForceHandle* f = toHandle<LuaForceHandle>(L, index)) return std::string("a ") + f->kind;
   if (toHandle<LuaWorld>(L, index)) return "the world";
   if (toHandle<LuaDraw>(L, index)) return "the draw object";

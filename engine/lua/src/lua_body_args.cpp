@@ -26,11 +26,16 @@ const std::vector<std::string_view>& geometryOptions(ShapeKind kind) {
   static const std::vector<std::string_view> circle = {"radius"}, box = {"width", "height"}, polygon = {"vertices"},
                                              capsule = {"a", "b", "radius"}, segment = {"a", "b"};
   switch (kind) {
-    case ShapeKind::Circle: return circle;
-    case ShapeKind::Box: return box;
-    case ShapeKind::Polygon: return polygon;
-    case ShapeKind::Capsule: return capsule;
-    case ShapeKind::Segment: return segment;
+    case ShapeKind::Circle:
+      return circle;
+    case ShapeKind::Box:
+      return box;
+    case ShapeKind::Polygon:
+      return polygon;
+    case ShapeKind::Capsule:
+      return capsule;
+    case ShapeKind::Segment:
+      return segment;
   }
   return circle;
 }
@@ -40,7 +45,8 @@ Shape readGeometry(const Options& o, ShapeKind kind) {
   // The options are read before the core is called, so a missing or mistyped one is named as such.
   try {
     switch (kind) {
-      case ShapeKind::Circle: return makeCircle(o.positive("radius"));
+      case ShapeKind::Circle:
+        return makeCircle(o.positive("radius"));
       case ShapeKind::Box: {
         const double w = o.positive("width"), h = o.positive("height");
         return makeBox(w, h);
@@ -63,10 +69,11 @@ Shape readGeometry(const Options& o, ShapeKind kind) {
     const std::string hint = "(split concave shapes into convex pieces)";
     std::string text = e.what();
     if (const size_t at = text.find(hint); at != std::string::npos)
-      text.replace(at, hint.size(), o.function() == "add_polygon"
-                                        ? "(give concave = true to make the body of convex pieces)"
-                                        : "(a shape is convex: add one shape per convex piece, or make the body "
-                                          "with world:add_polygon{vertices = ..., concave = true})");
+      text.replace(at, hint.size(),
+                   o.function() == "add_polygon"
+                       ? "(give concave = true to make the body of convex pieces)"
+                       : "(a shape is convex: add one shape per convex piece, or make the body "
+                         "with world:add_polygon{vertices = ..., concave = true})");
     failCore(L, o.function(), InputError(e.field(), text));  // names width, vertices[4], b, ... and the value
   }
   return {};

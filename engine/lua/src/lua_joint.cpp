@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 #include "api_names.h"
 #include "rigidlab/error.h"
@@ -79,9 +80,10 @@ std::string kindName(const LuaJoint& j) { return std::string(jointTypeName(j.typ
 // The joint a handle designates; fails "<function>: the revolute joint broke and was removed".
 JointId liveJoint(lua_State* L, const LuaJoint& j, std::string_view function) {
   if (!liveWorld(L, *j.scene, function).isValid(j.id))
-    fail(L, function, "the " + kindName(j) +
-                          (j.scene->broken_joints.count(handleKey(j.id.index, j.id.generation)) ? " broke and was removed"
-                                                                                                  : " was removed"));
+    fail(L, function,
+         "the " + kindName(j) +
+             (j.scene->broken_joints.count(handleKey(j.id.index, j.id.generation)) ? " broke and was removed"
+                                                                                   : " was removed"));
   return j.id;
 }
 
@@ -93,11 +95,12 @@ std::vector<std::string_view> fieldsOf(JointType type) {
   return all;
 }
 
-[[noreturn]] void unknownField(lua_State* L, const LuaJoint& j, const std::string& k, const std::vector<std::string_view>& names) {
-  std::string hint = closestName(k, names);
+[[noreturn]] void unknownField(lua_State* L, const LuaJoint& j, const std::string& k,
+                               const std::vector<std::string_view>& names) {
+  std::string hint;
   for (const auto& [name, meant] : jointSynonyms(j.type))
     if (name == k) hint = std::string(meant);
-  fail(L, kindName(j), "has no field '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
+  noSuchField(L, kindName(j), k, names, hint);
 }
 
 void update(lua_State* L, World& w, const LuaJoint& j, std::string_view function, const JointDef& def) {
@@ -122,8 +125,12 @@ int setLimits(lua_State* L) {
   requireIdle(L, *j.scene, "set_limits");
   World& w = liveWorld(L, *j.scene, "set_limits");
   JointDef def = w.joint(liveJoint(L, j, "set_limits"));
-  const char* lower = j.type == JointType::Revolute ? "lower_angle" : j.type == JointType::Distance ? "min_length" : "lower";
-  const char* upper = j.type == JointType::Revolute ? "upper_angle" : j.type == JointType::Distance ? "max_length" : "upper";
+  const char* lower = j.type == JointType::Revolute   ? "lower_angle"
+                      : j.type == JointType::Distance ? "min_length"
+                                                      : "lower";
+  const char* upper = j.type == JointType::Revolute   ? "upper_angle"
+                      : j.type == JointType::Distance ? "max_length"
+                                                      : "upper";
   setJointField(L, "set_limits", lower, *jointField(lower), sol::stack_object(L, 2), def);
   setJointField(L, "set_limits", upper, *jointField(upper), sol::stack_object(L, 3), def);
   update(L, w, j, "set_limits", def);
@@ -142,8 +149,7 @@ void pushBody(lua_State* L, Scene::Impl& scene, BodyId id) {
 int jointIndex(lua_State* L) {
   const LuaJoint& self = selfJoint(L, "joint");
   sol::stack_object key(L, 2);
-  if (key.get_type() != sol::type::string) fail(L, "joint", "fields are named by strings, got " + describe(key));
-  const std::string k = key.as<std::string>();
+  const std::string k = fieldName(L, "joint", key);
   const std::vector<std::string_view> names = fieldsOf(self.type);
   if (!contains(names, k)) unknownField(L, self, k, names);
   Scene::Impl& scene = *self.scene;
@@ -169,19 +175,20 @@ int jointIndex(lua_State* L) {
     lua_pushlstring(L, def.name.data(), def.name.size());
   } else if (k == "joint_a" || k == "joint_b") {
     const JointId g = k == "joint_a" ? def.joint_a : def.joint_b;
-    if (w.isValid(g)) jointHandle(L, scene, g).push(L);
-    else lua_pushnil(L);
+    if (!w.isValid(g)) return 0;
+    jointHandle(L, scene, g).push(L);
   } else if (const JointField* f = jointField(k)) {
     jointFieldValue(L, *f, def).push(L);
   } else {
     const JointState s = w.jointState(self.id);
-    if (k == "angle") lua_pushnumber(L, s.angle);
-    else if (k == "speed") lua_pushnumber(L, s.speed);
-    else if (k == "translation") lua_pushnumber(L, s.translation);
-    else if (k == "reaction_force") pushVec(L, s.reaction_force);
-    else if (k == "reaction_torque") lua_pushnumber(L, s.reaction_torque);
-    else if (k == "anchor_a") pushVec(L, pinned ? s.world_anchor_b : s.world_anchor_a);
-    else pushVec(L, pinned ? s.world_anchor_a : s.world_anchor_b);  // anchor_b
+    // The core's a is the world for a joint pinned to it: its anchors are the other way round.
+    const Vec2& on_a = pinned ? s.world_anchor_b : s.world_anchor_a;
+    const Vec2& on_b = pinned ? s.world_anchor_a : s.world_anchor_b;
+    if (k == "reaction_force" || k == "anchor_a" || k == "anchor_b") {
+      pushVec(L, k == "reaction_force" ? s.reaction_force : k == "anchor_a" ? on_a : on_b);
+    } else {
+      lua_pushnumber(L, k == "angle" ? s.angle : k == "speed" ? s.speed : k == "translation" ? s.translation : s.reaction_torque);
+    }
   }
   return 1;
 }
@@ -189,8 +196,7 @@ int jointIndex(lua_State* L) {
 int jointNewIndex(lua_State* L) {
   const LuaJoint& self = selfJoint(L, "joint");
   sol::stack_object key(L, 2), value(L, 3);
-  if (key.get_type() != sol::type::string) fail(L, "joint", "fields are named by strings, got " + describe(key));
-  const std::string k = key.as<std::string>();
+  const std::string k = fieldName(L, "joint", key);
   const std::string function = "joint." + k;
   const std::vector<std::string_view> names = fieldsOf(self.type);
   const std::vector<std::string_view> own = jointOwnFields(self.type);
@@ -212,18 +218,6 @@ int jointNewIndex(lua_State* L) {
   return 0;
 }
 
-int jointToString(lua_State* L) {
-  const std::string text = describeJoint(selfJoint(L, "tostring")).substr(2);  // "revolute joint 'hinge'"
-  lua_pushlstring(L, text.data(), text.size());
-  return 1;
-}
-
-int jointEqual(lua_State* L) {
-  const LuaJoint *a = toHandle<LuaJoint>(L, 1), *b = toHandle<LuaJoint>(L, 2);
-  lua_pushboolean(L, a && b && a->scene == b->scene && a->id == b->id);
-  return 1;
-}
-
 }  // namespace
 
 const JointField* jointField(std::string_view name) {
@@ -235,26 +229,39 @@ const JointField* jointField(std::string_view name) {
 void setJointField(lua_State* L, std::string_view function, std::string_view subject, const JointField& f,
                    const sol::object& value, JointDef& def) {
   switch (f.type) {
-    case T::Boolean: def.*f.flag = checkBool(L, function, subject, value); break;
-    case T::Vector: def.*f.vector = checkVec(L, function, subject, value); break;
-    case T::Number: def.*f.number = checkNumber(L, function, subject, value, f.range); break;
+    case T::Boolean:
+      def.*f.flag = checkBool(L, function, subject, value);
+      break;
+    case T::Vector:
+      def.*f.vector = checkVec(L, function, subject, value);
+      break;
+    case T::Number:
+      def.*f.number = checkNumber(L, function, subject, value, f.range);
+      break;
   }
-  if (f.enables == &JointDef::enable_spring) def.enable_spring = def.*f.number > 0.0;
-  else if (f.enables) def.*f.enables = true;
+  if (f.enables == &JointDef::enable_spring)
+    def.enable_spring = def.*f.number > 0.0;
+  else if (f.enables)
+    def.*f.enables = true;
 }
 
 sol::object jointFieldValue(lua_State* L, const JointField& f, const JointDef& def) {
   switch (f.type) {
-    case T::Boolean: return sol::make_object(L, def.*f.flag);
-    case T::Vector: return makeVec(L, def.*f.vector);
-    case T::Number: break;
+    case T::Boolean:
+      return sol::make_object(L, def.*f.flag);
+    case T::Vector:
+      return makeVec(L, def.*f.vector);
+    case T::Number:
+      break;
   }
   return sol::make_object(L, def.*f.number);
 }
 
 const char* jointFunction(JointType type) { return kFunctions[static_cast<size_t>(type)]; }
 
-const std::vector<std::string_view>& jointOptions(JointType type) { return *api::kJointKindOptions[static_cast<size_t>(type)]; }
+const std::vector<std::string_view>& jointOptions(JointType type) {
+  return *api::kJointKindOptions[static_cast<size_t>(type)];
+}
 
 bool hasLimits(JointType type) {
   const auto& o = jointOptions(type);
@@ -277,28 +284,24 @@ Options::Synonyms jointSynonyms(JointType type) {
     return {{"lower", "lower_angle"}, {"upper", "upper_angle"}, {"max_motor_force", "max_motor_torque"}};
   if (type == JointType::Prismatic)
     return {{"lower_angle", "lower"}, {"upper_angle", "upper"}, {"max_motor_torque", "max_motor_force"}};
-  if (type == JointType::Wheel) return {{"lower_angle", "lower"}, {"upper_angle", "upper"}, {"max_motor_force", "max_motor_torque"}};
+  if (type == JointType::Wheel)
+    return {{"lower_angle", "lower"}, {"upper_angle", "upper"}, {"max_motor_force", "max_motor_torque"}};
   return {};
 }
 
 void registerJointType(lua_State* L) {
-  registerHandleType(L, LuaJoint::kMetatable, guarded<jointIndex>, guarded<jointNewIndex>, guarded<jointToString>,
-                     guarded<jointEqual>);
+  registerHandleType(L, LuaJoint::kMetatable, guarded<jointIndex>, guarded<jointNewIndex>,
+                     guarded<handleToString<LuaJoint, describeJoint>>, guarded<handlesEqual<LuaJoint, &LuaJoint::id>>);
 }
 
 sol::object jointHandle(lua_State* L, Scene::Impl& scene, JointId id) {
-  const uint64_t key = handleKey(id.index, id.generation);
-  sol::object cached = scene.joint_handles.raw_get<sol::object>(key);
-  if (cached.valid() && cached.get_type() != sol::type::lua_nil) return cached;
-  pushHandle(L, LuaJoint{&scene, id, scene.world->joint(id).type});
-  sol::object handle = sol::stack::pop<sol::object>(L);
-  scene.joint_handles.raw_set(key, handle);
-  return handle;
+  return cachedHandle(L, scene.joint_handles, handleKey(id.index, id.generation),
+                      LuaJoint{&scene, id, scene.world->joint(id).type});
 }
 
 std::string describeJoint(const LuaJoint& j) {
   const World* w = j.scene->world.get();
-  const std::string kind = "a " + kindName(j);
+  const std::string kind = kindName(j);
   if (!w || !w->isValid(j.id)) return kind + " (removed)";
   const std::string& name = w->joint(j.id).name;
   return name.empty() ? kind : kind + " '" + displayText(name, 40) + "'";

@@ -53,7 +53,7 @@ Options::Synonyms jointSynonyms(JointType type);
 // speed and translation are the body's own; Lua shows the body as `a` and the world as b = nil.
 inline bool pinnedToWorld(const JointDef& def) { return def.a.isNull() && !def.b.isNull(); }
 
-// The handle of a live joint (cached, weak); "a revolute joint 'hinge'" for messages.
+// The handle of a live joint (cached, weak); "revolute joint 'hinge'" for messages.
 sol::object jointHandle(lua_State* L, Scene::Impl& scene, JointId id);
 std::string describeJoint(const LuaJoint& joint);
 

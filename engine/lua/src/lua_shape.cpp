@@ -7,13 +7,14 @@
 //   method      shape:remove()
 // The shape properties of a body (body.friction, body.category, ...) read and write the same
 // values for all of its shapes (shapeProperty, setShapeProperty).
+#include "lua_shape.h"
+
 #include <algorithm>
 
 #include "api_names.h"
 #include "bindings.h"
 #include "lua_args.h"
 #include "lua_body_args.h"
-#include "lua_shape.h"
 #include "rigidlab/error.h"
 
 namespace rigidlab::lua {
@@ -37,7 +38,8 @@ std::string takes(ShapeKind kind) {
 
 int addShape(lua_State* L) {
   const LuaBody* handle = toHandle<LuaBody>(L, 1);
-  if (!handle) fail(L, "add_shape", "call it as body:add_shape{...}, with a colon; got " + describe(L, 1) + " as the body");
+  if (!handle)
+    fail(L, "add_shape", "call it as body:add_shape{...}, with a colon; got " + describe(L, 1) + " as the body");
   Scene::Impl& scene = *handle->scene;
   requireIdle(L, scene, "add_shape");
   const BodyId body = liveBody(L, *handle, "add_shape");
@@ -47,7 +49,8 @@ int addShape(lua_State* L) {
   for (std::string_view key : {"radius", "width", "height", "vertices", "a", "b"}) {
     const auto& own = geometryOptions(kind);
     if (o.has(key) && std::find(own.begin(), own.end(), key) == own.end())
-      o.fail(key, std::string("is not an option of a ") + shapeKindName(kind) + " shape (it takes " + takes(kind) + ")");
+      o.fail(key,
+             std::string("is not an option of a ") + shapeKindName(kind) + " shape (it takes " + takes(kind) + ")");
   }
   World& world = *scene.world;
   ShapeDef def = readShapeOptions(o, kind != ShapeKind::Segment);
@@ -55,8 +58,9 @@ int addShape(lua_State* L) {
   const Vec2 offset = o.vec("offset", Vec2::Zero());
   const double angle = o.number("angle", 0.0);
   if (kind == ShapeKind::Segment && world.body(body).isDynamic())
-    o.fail("shape", "\"segment\" needs a static or kinematic body, and this one is dynamic: a segment has no area "
-                    "(use a capsule or a thin box)");
+    o.fail("shape",
+           "\"segment\" needs a static or kinematic body, and this one is dynamic: a segment has no area "
+           "(use a capsule or a thin box)");
   ShapeId id;
   try {
     if (offset != Vec2::Zero() || angle != 0.0) def.shape = transformShape(def.shape, offset, angle);
@@ -92,8 +96,7 @@ void pushPoints(lua_State* L, const std::vector<Vec2>& points) {
 int shapeIndex(lua_State* L) {
   const LuaShape& self = selfShape(L, "shape");
   sol::stack_object key(L, 2);
-  if (key.get_type() != sol::type::string) fail(L, "shape", "fields are named by strings, got " + describe(key));
-  const std::string k = key.as<std::string>();
+  const std::string k = fieldName(L, "shape", key);
   const World& w = liveWorld(L, *self.scene, "shape." + k);
   if (k == "removed") {
     lua_pushboolean(L, !w.isValid(self.id));
@@ -103,30 +106,29 @@ int shapeIndex(lua_State* L) {
     lua_pushcfunction(L, guarded<removeShapeMethod>);
     return 1;
   }
-  if (std::find(kShapeReadable.begin(), kShapeReadable.end(), k) == kShapeReadable.end()) {
-    const std::string hint = closestName(k, kShapeReadable);
-    fail(L, "shape", "has no field '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
-  }
+  if (std::find(kShapeReadable.begin(), kShapeReadable.end(), k) == kShapeReadable.end())
+    noSuchField(L, "shape", k, kShapeReadable);
   const BodyShape& s = w.shape(liveShape(L, self, "shape." + k));
   const Shape& g = s.geometry;
-  const bool two_points = g.type == ShapeType::Capsule || g.type == ShapeType::Segment || g.type == ShapeType::ChainSegment;
+  const bool two_points =
+      g.type == ShapeType::Capsule || g.type == ShapeType::Segment || g.type == ShapeType::ChainSegment;
   if (k == "kind") {
     lua_pushstring(L, shapeTypeName(g.type));
   } else if (k == "body") {
     bodyHandle(L, *self.scene, s.body).push(L);
   } else if (k == "radius") {
-    if (g.type == ShapeType::Circle || g.type == ShapeType::Capsule) lua_pushnumber(L, g.radius);
-    else lua_pushnil(L);
+    if (g.type != ShapeType::Circle && g.type != ShapeType::Capsule) return 0;  // nil
+    lua_pushnumber(L, g.radius);
   } else if (k == "center") {
     pushVec(L, g.type == ShapeType::Circle ? g.center
                : hasArea(g.type)           ? computeMass(g, 1.0).center
                                            : Vec2(0.5 * (g.vertices[0] + g.vertices[1])));
   } else if (k == "vertices") {
-    if (g.type == ShapeType::Polygon) pushPoints(L, g.vertices);
-    else lua_pushnil(L);
+    if (g.type != ShapeType::Polygon) return 0;
+    pushPoints(L, g.vertices);
   } else if (k == "a" || k == "b") {
-    if (two_points) pushVec(L, g.vertices[k == "a" ? 0 : 1]);
-    else lua_pushnil(L);
+    if (!two_points) return 0;
+    pushVec(L, g.vertices[k == "a" ? 0 : 1]);
   } else if (k == "mass") {
     lua_pushnumber(L, hasArea(g.type) ? computeMass(g, s.density).mass : 0.0);
   } else if (k == "area") {
@@ -140,30 +142,13 @@ int shapeIndex(lua_State* L) {
 int shapeNewIndex(lua_State* L) {
   const LuaShape& self = selfShape(L, "shape");
   sol::stack_object key(L, 2);
-  if (key.get_type() != sol::type::string) fail(L, "shape", "fields are named by strings, got " + describe(key));
-  const std::string k = key.as<std::string>();
+  const std::string k = fieldName(L, "shape", key);
   const std::string function = "shape." + k;
-  if (std::find(kShapeWritable.begin(), kShapeWritable.end(), k) == kShapeWritable.end()) {
-    if (std::find(kShapeReadable.begin(), kShapeReadable.end(), k) != kShapeReadable.end()) fail(L, function, "is read-only");
-    const std::string hint = closestName(k, kShapeWritable);
-    fail(L, "shape", "has no field '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
-  }
+  requireWritable(L, "shape", k, kShapeReadable, kShapeWritable);
   requireIdle(L, *self.scene, function);
   World& w = liveWorld(L, *self.scene, function);
   setShapeProperty(L, w, liveShape(L, self, function), function, k, sol::stack_object(L, 3));
   return 0;
-}
-
-int shapeToString(lua_State* L) {
-  const std::string text = describeShape(selfShape(L, "tostring")).substr(2);  // "circle shape"
-  lua_pushlstring(L, text.data(), text.size());
-  return 1;
-}
-
-int shapeEqual(lua_State* L) {
-  const LuaShape *a = toHandle<LuaShape>(L, 1), *b = toHandle<LuaShape>(L, 2);
-  lua_pushboolean(L, a && b && a->scene == b->scene && a->id == b->id);
-  return 1;
 }
 
 }  // namespace
@@ -171,7 +156,8 @@ int shapeEqual(lua_State* L) {
 int addShapeMethod(lua_State* L) { return guarded<addShape>(L); }
 
 sol::object shapeProperty(lua_State* L, const BodyShape& s, std::string_view name) {
-  if (name == "density") return hasArea(s.geometry.type) ? sol::make_object(L, s.density) : sol::make_object(L, sol::lua_nil);
+  if (name == "density")
+    return hasArea(s.geometry.type) ? sol::make_object(L, s.density) : sol::make_object(L, sol::lua_nil);
   if (name == "restitution") return sol::make_object(L, s.material.restitution);
   if (name == "friction") return sol::make_object(L, s.material.friction);
   if (name == "static_friction") return sol::make_object(L, s.material.static_friction);
@@ -214,18 +200,12 @@ void setShapeProperty(lua_State* L, World& w, ShapeId id, std::string_view funct
 }
 
 void registerShapeType(lua_State* L) {
-  registerHandleType(L, LuaShape::kMetatable, guarded<shapeIndex>, guarded<shapeNewIndex>, guarded<shapeToString>,
-                     guarded<shapeEqual>);
+  registerHandleType(L, LuaShape::kMetatable, guarded<shapeIndex>, guarded<shapeNewIndex>,
+                     guarded<handleToString<LuaShape, describeShape>>, guarded<handlesEqual<LuaShape, &LuaShape::id>>);
 }
 
 sol::object shapeHandle(lua_State* L, Scene::Impl& scene, ShapeId id) {
-  const uint64_t key = handleKey(id.index, id.generation);
-  sol::object cached = scene.shape_handles.raw_get<sol::object>(key);
-  if (cached.valid() && cached.get_type() != sol::type::lua_nil) return cached;
-  pushHandle(L, LuaShape{&scene, id});
-  sol::object handle = sol::stack::pop<sol::object>(L);
-  scene.shape_handles.raw_set(key, handle);
-  return handle;
+  return cachedHandle(L, scene.shape_handles, handleKey(id.index, id.generation), LuaShape{&scene, id});
 }
 
 ShapeId liveShape(lua_State* L, const LuaShape& shape, std::string_view function) {
@@ -243,8 +223,8 @@ void removeShape(lua_State* L, Scene::Impl& scene, ShapeId id) {
 
 std::string describeShape(const LuaShape& shape) {
   const World* w = shape.scene->world.get();
-  if (!w || !w->isValid(shape.id)) return "a shape (removed)";
-  return std::string("a ") + shapeTypeName(w->shape(shape.id).geometry.type) + " shape";
+  if (!w || !w->isValid(shape.id)) return "shape (removed)";
+  return std::string(shapeTypeName(w->shape(shape.id).geometry.type)) + " shape";
 }
 
 }  // namespace rigidlab::lua

@@ -17,7 +17,7 @@ ShapeId liveShape(lua_State* L, const LuaShape& shape, std::string_view function
 void removeShape(lua_State* L, Scene::Impl& scene, ShapeId id);
 // body:add_shape{...}
 int addShapeMethod(lua_State* L);
-// "a circle shape", "a shape (removed)".
+// "circle shape", "shape (removed)".
 std::string describeShape(const LuaShape& shape);
 
 // The shape properties a body also has for all its shapes (restitution, friction, static_friction,

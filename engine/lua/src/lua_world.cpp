@@ -103,20 +103,13 @@ int addForce(lua_State* L) {
 
 int bodies(lua_State* L) {
   Scene::Impl& scene = selfWorld(L, "bodies");
-  const std::vector<BodyId> ids = scene.world->bodyIds();
-  lua_createtable(L, static_cast<int>(ids.size()), 0);
-  for (size_t i = 0; i < ids.size(); ++i) {
-    bodyHandle(L, scene, ids[i]).push(L);
-    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
-  }
+  pushHandles(L, scene.world->bodyIds(), [&](BodyId id) { return bodyHandle(L, scene, id); });
   return 1;
 }
 
 int find(lua_State* L) {
   Scene::Impl& scene = selfWorld(L, "find");
-  sol::stack_object name(L, 2);
-  if (name.get_type() != sol::type::string) fail(L, "find", "name must be a string, got " + describe(name));
-  const auto id = scene.world->findBody(std::string_view(name.as<std::string>()));
+  const auto id = scene.world->findBody(std::string_view(stringArg(L, 2, "find", "name")));
   if (!id) return 0;
   bodyHandle(L, scene, *id).push(L);
   return 1;
@@ -183,16 +176,12 @@ int potentialEnergy(lua_State* L) {
 }
 
 lua_CFunction ownMethod(std::string_view name) {
-  if (name == "add_spring") return guarded<addSpring>;
-  if (name == "add_damper") return guarded<addDamper>;
-  if (name == "add_force") return guarded<addForce>;
-  if (name == "bodies") return guarded<bodies>;
-  if (name == "find") return guarded<find>;
-  if (name == "remove") return guarded<remove>;
-  if (name == "step") return guarded<step>;
-  if (name == "kinetic_energy") return guarded<kineticEnergy>;
-  if (name == "potential_energy") return guarded<potentialEnergy>;
-  return nullptr;
+  static const NamedFunction kMethods[] = {
+      {"add_spring", guarded<addSpring>}, {"add_damper", guarded<addDamper>}, {"add_force", guarded<addForce>},
+      {"bodies", guarded<bodies>},        {"find", guarded<find>},            {"remove", guarded<remove>},
+      {"step", guarded<step>},            {"kinetic_energy", guarded<kineticEnergy>},
+      {"potential_energy", guarded<potentialEnergy>}};
+  return lookUp(kMethods, name);
 }
 
 sol::object method(lua_State* L, std::string_view name) {
@@ -207,13 +196,11 @@ sol::object method(lua_State* L, std::string_view name) {
 void unknownField(lua_State* L, const std::string& k) {
   std::vector<std::string_view> all = kWorldFields;
   all.insert(all.end(), kWorldMethods.begin(), kWorldMethods.end());
-  const std::string hint = closestName(k, all);
-  fail(L, "world", "has no field '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
+  noSuchField(L, "world", k, all);
 }
 
 sol::object worldIndex(lua_State* L, const LuaWorld& self, const sol::stack_object& key) {
-  if (key.get_type() != sol::type::string) fail(L, "world", "fields are named by strings, got " + describe(key));
-  const std::string k = key.as<std::string>();
+  const std::string k = fieldName(L, "world", key);
   const World& w = liveWorld(L, *self.scene, "world");
   if (k == "gravity") return makeVec(L, w.settings().gravity);
   if (k == "integrator") return sol::make_object(L, std::string(integratorName(w.settings().integrator)));
@@ -231,8 +218,7 @@ sol::object worldIndex(lua_State* L, const LuaWorld& self, const sol::stack_obje
 }
 
 void worldNewIndex(lua_State* L, const LuaWorld& self, const sol::stack_object& key, const sol::stack_object& value) {
-  if (key.get_type() != sol::type::string) fail(L, "world", "fields are named by strings, got " + describe(key));
-  const std::string k = key.as<std::string>();
+  const std::string k = fieldName(L, "world", key);
   const std::string function = "world." + k;
   World& w = liveWorld(L, *self.scene, function);
   if (std::find(kWorldFields.begin(), kWorldFields.end(), k) != kWorldFields.end()) requireIdle(L, *self.scene, function);
@@ -313,8 +299,7 @@ int forceIndex(lua_State* L) {
   } else if (k == "remove") {
     lua_pushcfunction(L, guarded<removeForceHandle>);
   } else {
-    const std::string hint = closestName(k, {"kind", "removed", "remove"});
-    fail(L, self.kind, "has no field '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
+    noSuchField(L, self.kind, k, {"kind", "removed", "remove"});
   }
   return 1;
 }
@@ -325,12 +310,6 @@ int forceNewIndex(lua_State* L) {
 
 int forceToString(lua_State* L) {
   lua_pushstring(L, selfForce(L, "tostring").kind);
-  return 1;
-}
-
-int forceEqual(lua_State* L) {
-  const LuaForceHandle *a = toHandle<LuaForceHandle>(L, 1), *b = toHandle<LuaForceHandle>(L, 2);
-  lua_pushboolean(L, a && b && a->id == b->id && a->scene == b->scene);
   return 1;
 }
 
@@ -428,7 +407,7 @@ void registerWorldType(lua_State* L) {
   registerHandleType(L, LuaWorld::kMetatable, guarded<worldIndexMeta>, guarded<worldNewIndexMeta>, guarded<worldToString>,
                      nullptr);
   registerHandleType(L, LuaForceHandle::kMetatable, guarded<forceIndex>, guarded<forceNewIndex>, guarded<forceToString>,
-                     guarded<forceEqual>);
+                     guarded<handlesEqual<LuaForceHandle, &LuaForceHandle::id>>);
 }
 
 }  // namespace rigidlab::lua

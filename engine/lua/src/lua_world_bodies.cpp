@@ -73,7 +73,8 @@ BodyId createOneShape(lua_State* L, Scene::Impl& scene, const Options& o, const 
 
 // A body of several convex pieces with the same shape options. The mass, if given, is shared by
 // the pieces in proportion to their areas, and the velocity is the centre of mass's, as for one shape.
-BodyId createCompound(lua_State* L, Scene::Impl& scene, const Options& o, const std::vector<std::vector<Vec2>>& pieces) {
+BodyId createCompound(lua_State* L, Scene::Impl& scene, const Options& o,
+                      const std::vector<std::vector<Vec2>>& pieces) {
   BodyDef d = readBodyDef(o, BodyType::Dynamic);
   if (o.has("mass") && o.has("density")) o.fail("mass", "and density cannot both be given (mass sets the density)");
   const std::optional<double> mass = o.has("mass") ? std::optional(o.positive("mass")) : std::nullopt;
@@ -94,43 +95,19 @@ BodyId createCompound(lua_State* L, Scene::Impl& scene, const Options& o, const 
   return id;
 }
 
-int addBox(lua_State* L) {
-  Scene::Impl& scene = editedWorld(L, "add_box");
-  const Options o(L, "add_box", sol::stack_object(L, 2), joined({&kBodyOptions, &kShapeOptions, &kShapedBodyOptions, &kBoxOptions}));
-  finishBody(L, scene, o, createOneShape(L, scene, o, readGeometry(o, ShapeKind::Box)));
-  return 1;
-}
-
-int addCircle(lua_State* L) {
-  Scene::Impl& scene = editedWorld(L, "add_circle");
-  const Options o(L, "add_circle", sol::stack_object(L, 2),
-                  joined({&kBodyOptions, &kShapeOptions, &kShapedBodyOptions, &kCircleOptions}));
-  finishBody(L, scene, o, createOneShape(L, scene, o, readGeometry(o, ShapeKind::Circle)));
-  return 1;
-}
-
-int addCapsule(lua_State* L) {
-  Scene::Impl& scene = editedWorld(L, "add_capsule");
-  const Options o(L, "add_capsule", sol::stack_object(L, 2),
-                  joined({&kBodyOptions, &kShapeOptions, &kShapedBodyOptions, &kCapsuleOptions}));
-  finishBody(L, scene, o, createOneShape(L, scene, o, readGeometry(o, ShapeKind::Capsule)));
-  return 1;
-}
-
-int addSegment(lua_State* L) {
-  Scene::Impl& scene = editedWorld(L, "add_segment");
-  const Options o(L, "add_segment", sol::stack_object(L, 2),
-                  joined({&kBodyOptions, &kShapeOptions, &kShapedBodyOptions, &kSegmentOptions}));
-  finishBody(L, scene, o, createOneShape(L, scene, o, readGeometry(o, ShapeKind::Segment)));
-  return 1;
-}
-
-int addPolygon(lua_State* L) {
-  Scene::Impl& scene = editedWorld(L, "add_polygon");
-  const Options o(L, "add_polygon", sol::stack_object(L, 2),
-                  joined({&kBodyOptions, &kShapeOptions, &kShapedBodyOptions, &kPolygonOptions}));
-  if (!o.boolean("concave", false)) {
-    finishBody(L, scene, o, createOneShape(L, scene, o, readGeometry(o, ShapeKind::Polygon)));
+// add_box, add_circle, add_capsule, add_segment and add_polygon: the body options, the shape
+// options and the kind's geometry; a polygon with concave = true is split into convex pieces.
+template <ShapeKind Kind>
+int addShaped(lua_State* L) {
+  static constexpr const char* kFunctions[] = {"add_circle", "add_box", "add_polygon", "add_capsule", "add_segment"};
+  static const std::vector<std::string_view>* const kGeometry[] = {&kCircleOptions, &kBoxOptions, &kPolygonOptions,
+                                                                   &kCapsuleOptions, &kSegmentOptions};
+  const char* function = kFunctions[static_cast<size_t>(Kind)];
+  Scene::Impl& scene = editedWorld(L, function);
+  const Options o(L, function, sol::stack_object(L, 2),
+                  joined({&kBodyOptions, &kShapeOptions, &kShapedBodyOptions, kGeometry[static_cast<size_t>(Kind)]}));
+  if (Kind != ShapeKind::Polygon || !o.boolean("concave", false)) {
+    finishBody(L, scene, o, createOneShape(L, scene, o, readGeometry(o, Kind)));
     return 1;
   }
   const std::vector<Vec2> outline = o.points("vertices", 0, kMaxConcavePoints);
@@ -138,11 +115,12 @@ int addPolygon(lua_State* L) {
   try {
     pieces = decomposeConcave(outline);
   } catch (const InputError& e) {
-    failCore(L, "add_polygon", e);
+    failCore(L, function, e);
   }
   // A convex outline given concave = true is one piece: a plain one-shape body.
-  finishBody(L, scene, o, pieces.size() == 1 ? createOneShape(L, scene, o, makePolygon(pieces.front()))
-                                             : createCompound(L, scene, o, pieces));
+  finishBody(L, scene, o,
+             pieces.size() == 1 ? createOneShape(L, scene, o, makePolygon(pieces.front()))
+                                : createCompound(L, scene, o, pieces));
   return 1;
 }
 
@@ -182,7 +160,8 @@ int addBody(lua_State* L) {
   for (const auto* list : {&kShapeOptions, &kShapedBodyOptions})
     for (std::string_view key : *list)
       if (o.has(key))
-        o.fail(key, "is an option of a shape, and add_body makes a body without shapes: give it to body:add_shape{...}");
+        o.fail(key,
+               "is an option of a shape, and add_body makes a body without shapes: give it to body:add_shape{...}");
   finishBody(L, scene, o, create(L, *scene.world, "add_body", readBodyDef(o, BodyType::Dynamic)));
   return 1;
 }
@@ -190,14 +169,14 @@ int addBody(lua_State* L) {
 }  // namespace
 
 lua_CFunction bodyWorldMethod(std::string_view name) {
-  if (name == "add_box") return guarded<addBox>;
-  if (name == "add_circle") return guarded<addCircle>;
-  if (name == "add_polygon") return guarded<addPolygon>;
-  if (name == "add_capsule") return guarded<addCapsule>;
-  if (name == "add_segment") return guarded<addSegment>;
-  if (name == "add_chain") return guarded<addChain>;
-  if (name == "add_body") return guarded<addBody>;
-  return nullptr;
+  static const NamedFunction kMethods[] = {{"add_box", guarded<addShaped<ShapeKind::Box>>},
+                                           {"add_circle", guarded<addShaped<ShapeKind::Circle>>},
+                                           {"add_polygon", guarded<addShaped<ShapeKind::Polygon>>},
+                                           {"add_capsule", guarded<addShaped<ShapeKind::Capsule>>},
+                                           {"add_segment", guarded<addShaped<ShapeKind::Segment>>},
+                                           {"add_chain", guarded<addChain>},
+                                           {"add_body", guarded<addBody>}};
+  return lookUp(kMethods, name);
 }
 
 }  // namespace rigidlab::lua

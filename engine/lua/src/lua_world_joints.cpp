@@ -21,7 +21,8 @@ void readTunables(const Options& o, JointDef& d) {
   for (const bool enables : {false, true})
     for (std::string_view name : names) {
       const JointField* f = jointField(name);
-      if (f && o.has(name) && name.starts_with("enable_") == enables) setJointField(o.L(), o.function(), name, *f, o.get(name), d);
+      if (f && o.has(name) && name.starts_with("enable_") == enables)
+        setJointField(o.L(), o.function(), name, *f, o.get(name), d);
     }
   d.name = o.string("name", "", kNameBytes);
 }
@@ -30,10 +31,13 @@ void readTunables(const Options& o, JointDef& d) {
 // refused rather than left at 0.
 void requireTogether(const Options& o, std::string_view first, std::string_view second, const char* why) {
   if (o.has(first) != o.has(second))
-    o.fail(o.has(first) ? second : first, "is required with " + std::string(o.has(first) ? first : second) + " (" + why + ")");
+    o.fail(o.has(first) ? second : first,
+           "is required with " + std::string(o.has(first) ? first : second) + " (" + why + ")");
 }
 
-std::string bodyType(const World& w, BodyId id) { return id.isNull() ? "" : std::string(", ") + bodyTypeName(w.body(id).type); }
+std::string bodyType(const World& w, BodyId id) {
+  return id.isNull() ? "" : std::string(", ") + bodyTypeName(w.body(id).type);
+}
 
 // a, and b or the world; at least one of them dynamic.
 std::pair<BodyId, BodyId> readBodies(const Options& o, Scene::Impl& scene, bool b_required) {
@@ -49,8 +53,8 @@ std::pair<BodyId, BodyId> readBodies(const Options& o, Scene::Impl& scene, bool 
   }
   const World& w = *scene.world;
   if (!w.body(a).isDynamic() && (b.isNull() || !w.body(b).isDynamic()))
-    o.fail("a", "and b are both static or kinematic (a: " + describe(o.get("a")) + bodyType(w, a) + "; b: " +
-                    (b.isNull() ? std::string("the world") : describe(o.get("b")) + bodyType(w, b)) +
+    o.fail("a", "and b are both static or kinematic (a: " + describe(o.get("a")) + bodyType(w, a) +
+                    "; b: " + (b.isNull() ? std::string("the world") : describe(o.get("b")) + bodyType(w, b)) +
                     "): at least one of the joint's bodies must be dynamic (a joint between static or kinematic "
                     "bodies does nothing)");
   return {a, b};
@@ -61,8 +65,9 @@ JointId jointOption(const Options& o, Scene::Impl& scene, std::string_view key) 
   v.push(o.L());
   const LuaJoint* j = toHandle<LuaJoint>(o.L(), -1);
   lua_pop(o.L(), 1);
-  if (!j) o.fail(key, (o.has(key) ? "must be a joint (from world:add_revolute or add_prismatic), got " + describe(v)
-                                  : std::string("is required: a revolute or prismatic joint")));
+  if (!j)
+    o.fail(key, (o.has(key) ? "must be a joint (from world:add_revolute or add_prismatic), got " + describe(v)
+                            : std::string("is required: a revolute or prismatic joint")));
   if (j->scene != &scene) o.fail(key, "is a joint of another scene");
   if (!scene.world->isValid(j->id)) o.fail(key, "is " + describe(v) + ", which was removed");
   return j->id;
@@ -103,7 +108,8 @@ int addJoint(lua_State* L, JointType type) {
   }
   readTunables(o, d);
   if (type == JointType::Revolute) requireTogether(o, "lower_angle", "upper_angle", "an angle limit has two bounds");
-  if (type == JointType::Prismatic || type == JointType::Wheel) requireTogether(o, "lower", "upper", "a limit has two bounds");
+  if (type == JointType::Prismatic || type == JointType::Wheel)
+    requireTogether(o, "lower", "upper", "a limit has two bounds");
   const char* strength = type == JointType::Prismatic ? "max_motor_force" : "max_motor_torque";
   if (o.has("motor_speed") && !o.has(strength))
     o.fail(strength, std::string("is required with motor_speed (without it the motor has no ") +
@@ -127,11 +133,7 @@ int addJointOf(lua_State* L) {
 }
 
 void pushJoints(lua_State* L, Scene::Impl& scene, const std::vector<JointId>& ids) {
-  lua_createtable(L, static_cast<int>(ids.size()), 0);
-  for (size_t i = 0; i < ids.size(); ++i) {
-    jointHandle(L, scene, ids[i]).push(L);
-    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
-  }
+  pushHandles(L, ids, [&](JointId id) { return jointHandle(L, scene, id); });
 }
 
 int joints(lua_State* L) {
@@ -142,9 +144,7 @@ int joints(lua_State* L) {
 
 int findJoint(lua_State* L) {
   Scene::Impl& scene = selfWorld(L, "find_joint");
-  sol::stack_object name(L, 2);
-  if (name.get_type() != sol::type::string) fail(L, "find_joint", "name must be a string, got " + describe(name));
-  const auto id = scene.world->findJoint(std::string_view(name.as<std::string>()));
+  const auto id = scene.world->findJoint(std::string_view(stringArg(L, 2, "find_joint", "name")));
   if (!id) return 0;
   jointHandle(L, scene, *id).push(L);
   return 1;
@@ -161,18 +161,18 @@ int bodyJoints(lua_State* L) {
 }  // namespace
 
 lua_CFunction jointWorldMethod(std::string_view name) {
-  if (name == "add_revolute") return guarded<addJointOf<JointType::Revolute>>;
-  if (name == "add_prismatic") return guarded<addJointOf<JointType::Prismatic>>;
-  if (name == "add_distance") return guarded<addJointOf<JointType::Distance>>;
-  if (name == "add_weld") return guarded<addJointOf<JointType::Weld>>;
-  if (name == "add_wheel") return guarded<addJointOf<JointType::Wheel>>;
-  if (name == "add_motor_joint") return guarded<addJointOf<JointType::Motor>>;
-  if (name == "add_friction_joint") return guarded<addJointOf<JointType::Friction>>;
-  if (name == "add_pulley") return guarded<addJointOf<JointType::Pulley>>;
-  if (name == "add_gear") return guarded<addJointOf<JointType::Gear>>;
-  if (name == "joints") return guarded<joints>;
-  if (name == "find_joint") return guarded<findJoint>;
-  return nullptr;
+  static const NamedFunction kMethods[] = {{"add_revolute", guarded<addJointOf<JointType::Revolute>>},
+                                           {"add_prismatic", guarded<addJointOf<JointType::Prismatic>>},
+                                           {"add_distance", guarded<addJointOf<JointType::Distance>>},
+                                           {"add_weld", guarded<addJointOf<JointType::Weld>>},
+                                           {"add_wheel", guarded<addJointOf<JointType::Wheel>>},
+                                           {"add_motor_joint", guarded<addJointOf<JointType::Motor>>},
+                                           {"add_friction_joint", guarded<addJointOf<JointType::Friction>>},
+                                           {"add_pulley", guarded<addJointOf<JointType::Pulley>>},
+                                           {"add_gear", guarded<addJointOf<JointType::Gear>>},
+                                           {"joints", guarded<joints>},
+                                           {"find_joint", guarded<findJoint>}};
+  return lookUp(kMethods, name);
 }
 
 int bodyJointsMethod(lua_State* L) { return guarded<bodyJoints>(L); }
