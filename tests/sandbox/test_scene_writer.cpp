@@ -115,7 +115,7 @@ void removeCodeForces(World& w) {
 
 }  // namespace
 
-TEST_CASE("scene writer: save → load gives the same state (1e-12), settings and camera; save again is identical") {
+TEST_CASE("scene writer: save → load gives the same state (1e-12), settings and camera, save again is identical") {
   TempDir dir;
   auto original = Scene::loadString(kScene, "original.lua");
   for (int i = 0; i < 37; ++i) original->step();
@@ -479,7 +479,7 @@ TEST_CASE("scene writer: a world of every kind saved before it runs steps bit fo
   checkSameWorld(a, b, 0.0);
 }
 
-TEST_CASE("scene writer: what the scene API cannot make is left out and named; the rest loads") {
+TEST_CASE("scene writer: what the scene API cannot make is left out and named, the rest loads") {
   World w;
   BodyDef d;
   d.shape = makeCircle(0.5);
