@@ -33,6 +33,7 @@ void bodyFields(BodyProps& edited, EditTracker& t) {
   t.track();
   inputDouble("angular velocity [rad/s]", &edited.angular_velocity);
   t.track();
+  if (!ImGui::CollapsingHeader("options")) return;  // closed by default: the panel stays short
   inputDouble("linear damping [1/s]", &edited.linear_damping);
   t.track();
   inputDouble("angular damping [1/s]", &edited.angular_damping);
@@ -51,8 +52,8 @@ void bodyFields(BodyProps& edited, EditTracker& t) {
 
 void shapeFields(const World& w, const Body& b, BodyProps& edited, PanelState& p, EditTracker& t) {
   if (b.shapes.empty()) return;
-  ImGui::Separator();
   const int n = static_cast<int>(b.shapes.size());
+  if (!ImGui::CollapsingHeader(n == 1 ? "shape" : "shapes")) return;
   p.shape_index = std::clamp(p.shape_index, 0, n - 1);
   if (n > 1) {
     int shown = p.shape_index + 1;

@@ -66,7 +66,9 @@ void pressJointTool(Session& s, const Vec2& p) {
   const BodyId a = t.joint_body;
   const BodyId b = pickBody(w, p, tolerance, a).value_or(BodyId{});
   t.joint_body = {};
-  addJoint(s, toolJointDef(t, a, t.joint_point, b, p), std::string("add ") + jointTypeName(t.joint_kind) + " joint");
+  const std::string label = std::string("add ") + jointTypeName(t.joint_kind) + " joint";
+  if (!addJoint(s, toolJointDef(t, a, t.joint_point, b, p), label).isNull())
+    s.setStatus(label + (b.isNull() ? " to the world" : " between two bodies"));
 }
 
 void drawJointToolOverlay(const Session& s, Renderer& r, const Vec2& cursor) {
