@@ -4,8 +4,10 @@
 // filters, type and options, state), joints, built-in springs and dampers, and a PopulateWorld
 // that hands the data to the scripts/saved_world.lua module (format 3; it reads 1 and 2 too).
 // Loaded, it gives the same bodies, shapes and joints in the same order, with the same positions,
-// angles, velocities, masses and joint readings (anchors, angles, translations) bit for bit; a
-// world saved before it ran steps exactly like the original. What cannot be written (code forces,
+// angles, velocities, masses and shapes bit for bit, and joints that read the same anchors, angles
+// and translations to rounding (the scene API takes anchors in world coordinates, from which the
+// joint's frames in its bodies are computed again); a world saved before it ran steps bit for bit
+// like the original. What cannot be written (code forces,
 // bodies without shapes, joints the scene API cannot make) is named in a comment at the end. It is written atomically: a temporary file in the same directory,
 // flushed and fsync'ed, renamed over the target, then the directory fsync'ed; a save killed
 // mid-write leaves the old file or the new one, never a torn one.
