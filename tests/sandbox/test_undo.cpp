@@ -231,7 +231,7 @@ TEST_CASE("undo: a deleted body comes back with its joints holding it as they di
   CHECK(world.jointIds().empty());
 }
 
-TEST_CASE("undo: joints made, deleted and tuned go back and forth; a gear comes back with the joint it couples") {
+TEST_CASE("undo: joints made, deleted and tuned go back and forth, a gear comes back with the joint it couples") {
   World world;
   const BodyId big = world.createBody(box({0, 0}));
   const BodyId small = world.createBody(box({2, 0}));
