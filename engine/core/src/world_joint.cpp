@@ -288,6 +288,7 @@ JointState World::jointState(JointId id) const {
   const Vec2 d = s.world_anchor_b - s.world_anchor_a;
   if (j.def.type == JointType::Prismatic || j.def.type == JointType::Wheel) {
     const Vec2 axis = xa.q.apply(j.local_axis);
+    s.axis = axis;
     s.translation = axis.dot(d);
     // d/dt (a · d) = a · (v_pB − v_pA) + (ω_A × a) · d
     const double along = axis.dot(velocityAt(j.b, s.world_anchor_b) - velocityAt(j.a, s.world_anchor_a)) + cross(wa, axis).dot(d);

@@ -111,6 +111,7 @@ struct JointState {
   Vec2 reaction_force = Vec2::Zero();  // on b, of the last step [N]
   double reaction_torque = 0.0;        // on b, of the last step [N·m]
   Vec2 world_anchor_a = Vec2::Zero(), world_anchor_b = Vec2::Zero();
+  Vec2 axis = Vec2(1.0, 0.0);  // prismatic, wheel: the axis now (it turns with a), unit, world
   bool broken = false;       // exceeded break_force or break_torque (the joint is removed)
 };
 
