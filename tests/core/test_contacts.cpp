@@ -347,7 +347,11 @@ TEST_CASE("continuous collision: walls added, moved or made static after the fir
     BodyId wall;
     if (edit == Edit::MoveWall) wall = test::addBox(w, 0.1, 10, {50.0, 0.0}, true);
     if (edit == Edit::MakeStatic) wall = test::addBox(w, 0.1, 10, {5.0, 0.0}, false);
-    if (edit == Edit::AddShape) wall = w.createBody(BodyDef{.type = BodyType::Static});
+    if (edit == Edit::AddShape) {
+      BodyDef bare;
+      bare.type = BodyType::Static;
+      wall = w.createBody(bare);
+    }
     if (edit == Edit::Enable) {
       wall = test::addBox(w, 0.1, 10, {5.0, 0.0}, true);
       w.setEnabled(wall, false);
@@ -360,7 +364,12 @@ TEST_CASE("continuous collision: walls added, moved or made static after the fir
       case Edit::AddWall: test::addBox(w, 0.1, 10, {5.0, 0.0}, true); break;
       case Edit::MoveWall: w.setTransform(wall, {5.0, 0.0}, 0.0); break;
       case Edit::MakeStatic: w.setType(wall, BodyType::Static); break;
-      case Edit::AddShape: w.createShape(wall, ShapeDef{.shape = makeBox(0.1, 20, {5.0, 0.0})}); break;
+      case Edit::AddShape: {
+        ShapeDef piece;
+        piece.shape = makeBox(0.1, 20, {5.0, 0.0});
+        w.createShape(wall, piece);
+        break;
+      }
       case Edit::Enable: w.setEnabled(wall, true); break;
     }
     w.setVelocity(disc, {100.0, 0.0});

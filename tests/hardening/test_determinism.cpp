@@ -55,7 +55,7 @@ const Golden kGolden[] = {
     {"tests/scenes/lua_api.lua", "c081df7e46e063da"},
     {"tests/scenes/lua_bodies.lua", "0fc48f776fa5e190"},
     {"tests/scenes/lua_damper_twin.lua", "7367e7e70cd737d3"},
-    {"tests/scenes/lua_joints.lua", "5d64c9a726f96899"},
+    {"tests/scenes/lua_joints.lua", "315505d7d535db5d"},
     {"tests/scenes/lua_shapes.lua", "a286d96b6774ebac"},
     {"tests/scenes/lua_spring_twin.lua", "ad804d90435d3a9c"},
     {"tests/scenes/regression_far_body.lua", "8b5d76f4f74135f6"},

@@ -10,7 +10,7 @@
 #   Ctrl+S, Enter → saved as a new scene file (format 3: shapes and joints).
 # The final picture must show exactly that, and the saved file must hold it: read back through
 # scripts/saved_world.lua by the scene API double (open_saved, $5). Opening it in rigidlab itself
-# is build_reopen_test.sh, which waits for the Lua bindings of shapes and joints.
+# is build_reopen_test.sh.
 source "$(dirname "$0")/lib.sh"
 OPEN_SAVED=$5
 require_xvfb

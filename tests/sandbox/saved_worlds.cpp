@@ -100,7 +100,7 @@ World everyKindWorld() {
   const BodyId arm = body(w, BodyType::Dynamic, {-4, 4}, 0.0, makeBox(2, 0.2), "arm");
   JointDef rev;
   rev.type = JointType::Revolute;
-  rev.a = arm;
+  rev.b = arm;  // a: the world, as the scene API pins
   rev.anchor_a = {-5, 4};
   rev.enable_limit = true;
   rev.lower = -0.6;
@@ -203,7 +203,7 @@ World everyKindWorld() {
   w.setVelocity(puck, {2, 0});
   JointDef friction;
   friction.type = JointType::Friction;
-  friction.a = puck;
+  friction.b = puck;
   friction.anchor_a = {-12, 1};
   friction.max_force = 5;
   friction.max_torque = 1;
@@ -227,7 +227,7 @@ World everyKindWorld() {
   const BodyId small = body(w, BodyType::Dynamic, {-18.5, 6}, 0.0, makeCircle(0.5), "small gear");
   JointDef pin;
   pin.type = JointType::Revolute;
-  pin.a = big;
+  pin.b = big;
   pin.anchor_a = {-20, 6};
   const JointId big_pin = joint(w, pin);
   pin.a = small;

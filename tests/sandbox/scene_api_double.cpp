@@ -1,6 +1,7 @@
 // The scene API double (scene_api_double.h), on Lua's C API.
 #include "scene_api_double.h"
 
+#include <utility>
 #include <lua.hpp>
 
 #include <algorithm>
@@ -318,8 +319,10 @@ JointDef jointCommon(const Options& o, JointType type) {
   JointDef d;
   d.type = type;
   if (type != JointType::Gear) {
+    // As the bindings do: without b the joint pins a to the world, which is the core's body a.
     d.a = o.handle<BodyId>("a", kBodyMeta);
     if (o.has("b")) d.b = o.handle<BodyId>("b", kBodyMeta);
+    else std::swap(d.a, d.b);
   }
   d.collide_connected = o.boolean("collide_connected", false);
   d.break_force = o.number("break_force", d.break_force);
@@ -382,6 +385,7 @@ int addDistance(lua_State* L) {
   JointDef d = jointCommon(o, JointType::Distance);
   d.anchor_a = o.vec("anchor_a", Vec2::Zero());
   d.anchor_b = o.vec("anchor_b", Vec2::Zero());
+  if (d.a.isNull()) std::swap(d.anchor_a, d.anchor_b);  // the scene's anchor_a is on its body a
   d.length = o.number("length", d.length);
   d.enable_limit = o.has("min_length") || o.has("max_length");
   d.min_length = o.number("min_length", d.min_length);

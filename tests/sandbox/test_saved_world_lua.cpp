@@ -1,8 +1,6 @@
 // The saved-file round trip through the real Lua bindings: format 3 files (every shape kind, body
-// option and joint kind) opened by rigidlab itself, as the sandbox's saves are. Built only when
-// the bindings for shapes and joints are in (tests/sandbox/CMakeLists.txt looks for
-// "add_capsule" in engine/lua/src/api_names.h); until then test_scene_writer.cpp runs the same
-// files through the scene API double.
+// option and joint kind) opened by rigidlab itself, as the sandbox's saves are;
+// test_scene_writer.cpp runs the same files through the scene API double.
 #include <doctest/doctest.h>
 #include <unistd.h>
 

@@ -497,7 +497,7 @@ TEST_CASE("scene writer: what the scene API cannot make is left out and named, t
   w.createChain(ground, chain);  // a second chain on one body
   JointDef pin;
   pin.type = JointType::Revolute;
-  pin.b = ball;  // the world as a
+  pin.a = ball;  // the world as b: the scene API pins to the world as body a
   w.createJoint(pin);
   TempDir dir;
   saveScene(w, SceneSettings{}, dir.path / "partial.lua");
@@ -505,7 +505,7 @@ TEST_CASE("scene writer: what the scene API cannot make is left out and named, t
   CHECK(text.find("-- Not saved: ") != std::string::npos);
   CHECK(text.find("body without shapes (the scene API makes bodies with a shape) x1") != std::string::npos);
   CHECK(text.find("chain segment of a body's second chain (the scene API makes one chain per body) x2") != std::string::npos);
-  CHECK(text.find("joint with the world as body a") != std::string::npos);
+  CHECK(text.find("joint with the world as body b") != std::string::npos);
   const World loaded = loadWithDouble(dir.path / "partial.lua");
   CHECK(loaded.bodyCount() == 2);
   CHECK(loaded.body(loaded.bodyIds()[1]).shapes.size() == 1);

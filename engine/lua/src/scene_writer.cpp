@@ -359,6 +359,7 @@ void writeJoint(Writer& w, const World& world, JointId id, int index, const std:
                 const std::map<uint32_t, int>& joint_index) {
   const JointBuild build = jointBuild(world, id);
   const JointDef& d = build.def;
+  const bool pinned = d.a.isNull() && d.type != JointType::Gear;
   const std::string path = "joints[" + std::to_string(index) + "]";
   Writer j;
   j.raw("    {kind = ");
@@ -369,8 +370,9 @@ void writeJoint(Writer& w, const World& world, JointId id, int index, const std:
     j.raw("joint_b = " + std::to_string(joint_index.at(d.joint_b.index)) + ", ");
     j.field("ratio", path, d.ratio);
   } else {
-    j.raw("a = " + std::to_string(body_index.at(d.a.index)) + ", ");
-    if (!d.b.isNull()) j.raw("b = " + std::to_string(body_index.at(d.b.index)) + ", ");
+    // Pinned to the world, the core's body a is the world and the scene's `a` is the core's b.
+    j.raw("a = " + std::to_string(body_index.at((pinned ? d.b : d.a).index)) + ", ");
+    if (!pinned) j.raw("b = " + std::to_string(body_index.at(d.b.index)) + ", ");
   }
   const bool limit = d.enable_limit, motor = d.enable_motor, spring = d.enable_spring;
   const auto springFields = [&] {
@@ -391,8 +393,8 @@ void writeJoint(Writer& w, const World& world, JointId id, int index, const std:
       break;
     case JointType::Distance:
     case JointType::Pulley:
-      j.field("anchor_a", path, d.anchor_a);
-      j.field("anchor_b", path, d.anchor_b);
+      j.field("anchor_a", path, pinned ? d.anchor_b : d.anchor_a);
+      j.field("anchor_b", path, pinned ? d.anchor_a : d.anchor_b);
       break;
     case JointType::Motor:
       j.field("anchor", path, d.anchor_a);
@@ -498,7 +500,8 @@ std::optional<std::string> unsaved(const World& world, JointId id, const std::ma
     if (!joint_index.count(d.joint_a.index) || !joint_index.count(d.joint_b.index)) return "gear of a joint not saved";
     return std::nullopt;
   }
-  if (d.a.isNull()) return "joint with the world as body a (the scene API pins to the world by leaving out b)";
+  if (d.b.isNull()) return "joint with the world as body b (the scene API pins to the world as body a)";
+  if (d.type == JointType::Pulley && d.a.isNull()) return "pulley with the world as a body (the scene API's pulley joins two bodies)";
   if (!saved(d.a) || !saved(d.b)) return "joint of a body not saved";
   if (!dynamic(d.a) && !dynamic(d.b)) return "joint between bodies that are not dynamic (it does nothing)";
   return std::nullopt;

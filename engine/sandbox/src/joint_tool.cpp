@@ -16,15 +16,18 @@ constexpr double kPickPixels = 6.0;  // segments and chains are picked this clos
 JointDef toolJointDef(const ToolState& t, BodyId a, const Vec2& p1, BodyId b, const Vec2& p2) {
   JointDef d;
   d.type = t.joint_kind;
-  d.a = a;
-  d.b = b;
+  // Pinned to the world (b null), the world is the joint's body a, as Box2D and the scene API
+  // (a saved world reopens as the same joints) have it.
+  const bool pinned = b.isNull();
+  d.a = pinned ? BodyId{} : a;
+  d.b = pinned ? a : b;
   d.collide_connected = t.joint_collide;
   d.anchor_a = p2;
   const double axis = t.joint_axis_degrees * std::numbers::pi / 180.0;
   switch (t.joint_kind) {
     case JointType::Distance:
-      d.anchor_a = p1;
-      d.anchor_b = p2;
+      d.anchor_a = pinned ? p2 : p1;
+      d.anchor_b = pinned ? p1 : p2;
       if (t.joint_rope) {  // slack below its length, taut at it
         d.enable_limit = true;
         d.min_length = 0.0;
