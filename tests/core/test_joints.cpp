@@ -377,3 +377,29 @@ TEST_CASE("revolute reference_angle: the angle the limits and the spring count f
   j.reference_angle = std::numeric_limits<double>::quiet_NaN();
   CHECK_THROWS_AS(w.createJoint(j), InputError);
 }
+
+TEST_CASE("updateJoint checks a motor joint's new target like createJoint does") {
+  // The target pose is validated before it is taken: a NaN offset once passed here and made the
+  // joint's anchor NaN (found by fuzz_world).
+  World w;
+  const BodyId puck = test::addCircle(w, 0.2, {1.0, 0.0});
+  JointDef m;
+  m.type = JointType::Motor;
+  m.b = puck;
+  m.anchor_a = Vec2(1.0, 0.0);
+  m.max_force = 10.0;
+  const JointId id = w.createJoint(m);
+  JointDef bad = w.joint(id);
+  bad.linear_offset = Vec2(std::numeric_limits<double>::quiet_NaN(), 0.0);
+  CHECK_THROWS_AS(w.updateJoint(id, bad), InputError);
+  bad = w.joint(id);
+  bad.angular_offset = std::numeric_limits<double>::infinity();
+  CHECK_THROWS_AS(w.updateJoint(id, bad), InputError);
+  CHECK(w.joint(id).linear_offset == Vec2(1.0, 0.0));
+  w.step(1.0 / 60.0);
+  CHECK(std::isfinite(w.jointState(id).world_anchor_a.x()));
+  JointDef moved = w.joint(id);
+  moved.linear_offset = Vec2(2.0, 0.0);
+  w.updateJoint(id, moved);
+  CHECK(w.jointState(id).world_anchor_a.x() == 2.0);
+}

@@ -259,12 +259,14 @@ void World::updateJoint(JointId id, const JointDef& def) {
   Joint& j = w.get(id);
   JointDef checked = j.def;
   copyTunables(checked, def);
-  validateTunables(checked);
-  if (j.def.type == JointType::Motor) {
+  if (j.def.type == JointType::Motor) {  // the target pose is the motor's to change
     checked.linear_offset = def.linear_offset;
     checked.angular_offset = def.angular_offset;
-    j.local_a = def.linear_offset;
-    j.reference_angle = def.angular_offset;
+  }
+  validateTunables(checked);
+  if (j.def.type == JointType::Motor) {
+    j.local_a = checked.linear_offset;
+    j.reference_angle = checked.angular_offset;
   }
   j.def = checked;
   for (uint32_t slot : {j.a, j.b, j.c, j.d})
