@@ -3,13 +3,14 @@
 # -ffp-contract=off: no fused multiply-add contraction, so results are bit-identical across builds
 #   that differ only in optimisation (determinism, golden hashes).
 # never -ffast-math: it turns std::isnan/std::isfinite into constants and breaks the NaN firewall.
-# Release defaults to -O2 with portable code generation (no -march=native), so the benchmark numbers
-# are what a user of the README build gets.
-set(CMAKE_CXX_FLAGS_RELEASE "-O2 -DNDEBUG" CACHE STRING "" FORCE)
+# Release builds rigidlab's own targets with -O2 and portable code generation (no -march=native), so
+# the benchmark numbers are what a user of the README build gets. Given per target (it comes after
+# CMAKE_CXX_FLAGS_RELEASE on the command line, so it wins) rather than by rewriting the cache's
+# flags, which would change a parent project's.
 
 add_library(rigidlab_options INTERFACE)
 target_compile_options(rigidlab_options INTERFACE
-  -Wall -Wextra -Wpedantic -ffp-contract=off -fno-fast-math)
+  -Wall -Wextra -Wpedantic -ffp-contract=off -fno-fast-math $<$<CONFIG:Release>:-O2>)
 if(RIGIDLAB_SANITIZE)
   target_compile_options(rigidlab_options INTERFACE
     -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)

@@ -9,6 +9,7 @@
 #include "bindings.h"
 #include "lua_args.h"
 #include "rigidlab/error.h"
+#include "rigidlab/lua/data_directory.h"
 #include "rigidlab/lua/scene_text.h"
 #include "scene_line.h"
 
@@ -380,9 +381,6 @@ std::vector<Scene::ExactState> Scene::exact(double t) {
 
 long Scene::luaCalls() const { return impl_->host->calls; }
 
-std::filesystem::path scriptsDirectory() {
-  if (const char* env = std::getenv("RIGIDLAB_SCRIPTS"); env && *env) return env;
-  return RIGIDLAB_SCRIPTS_DIR;
-}
+std::filesystem::path scriptsDirectory() { return dataDirectory("scripts", "RIGIDLAB_SCRIPTS"); }
 
 }  // namespace rigidlab::lua

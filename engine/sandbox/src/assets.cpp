@@ -1,16 +1,14 @@
 // Run-time asset lookup (assets.h).
 #include "assets.h"
 
-#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
+#include "rigidlab/lua/data_directory.h"
+
 namespace rigidlab::sandbox {
 
-std::filesystem::path assetsDirectory() {
-  if (const char* env = std::getenv("RIGIDLAB_ASSETS"); env && *env) return env;
-  return RIGIDLAB_ASSETS_DIR;
-}
+std::filesystem::path assetsDirectory() { return lua::dataDirectory("assets", "RIGIDLAB_ASSETS"); }
 
 std::optional<std::string> readTextFile(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);

@@ -1,5 +1,5 @@
-// Finding the sandbox's run-time files (shaders): $RIGIDLAB_ASSETS if set, else the source tree's
-// assets/ that this binary was built from (compile-time RIGIDLAB_ASSETS_DIR).
+// Finding the sandbox's run-time files (shaders, font): $RIGIDLAB_ASSETS if set, else this
+// installation's assets (rigidlab/lua/data_directory.h).
 #pragma once
 
 #include <filesystem>

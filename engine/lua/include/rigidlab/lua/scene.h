@@ -142,8 +142,8 @@ class Scene {
   std::unique_ptr<Impl> impl_;
 };
 
-// The scripts/ directory (Lua modules, scenes): $RIGIDLAB_SCRIPTS if set, else the source tree's
-// scripts/ that this binary was built from.
+// The scripts/ directory (Lua modules, scenes): $RIGIDLAB_SCRIPTS if set, else this installation's
+// (data_directory.h).
 std::filesystem::path scriptsDirectory();
 
 }  // namespace rigidlab::lua
