@@ -108,17 +108,17 @@ TEST_CASE("events: hooks may edit the world; a body removed by an earlier hook i
       assert(world:find("added in a hook"), "no body was added")
       assert(second.removed)
     end)lua");
-  for (int i = 0; i < 10; ++i) scene->step();
+  for (int i = 0; i < 30; ++i) scene->step();
   scene->runCheck();
 }
 
 TEST_CASE("events: a failing hook or pre_solve is one message at its line; a failed pre_solve undoes the step") {
   CHECK(errorOf("function PopulateWorld(world)\n" + boxes(1, "contact_events = true") +
                     "end\nfunction OnContactBegin(world, c)\n  error('boom')\nend",
-                10) == "test.lua:6: OnContactBegin: boom");
+                30) == "test.lua:6: OnContactBegin: boom");
   CHECK(errorOf("function PopulateWorld(world)\n" + boxes(1, "hit_speed = 0") +
                     "end\nfunction OnHit(world, c) local x = c.nope + 1 end",
-                10)
+                30)
             .starts_with("test.lua:5: OnHit: attempt to perform arithmetic on a nil value (field 'nope')"));
   CHECK(errorOf("function PopulateWorld(world)\n" + boxes(1, "pre_solve = function(c)\n  error('no') end") + "end", 10) ==
         "test.lua:4: pre_solve: no");
@@ -214,7 +214,8 @@ TEST_CASE("events and queries: mistakes are one message at the caller's line nam
       {"local x = world:add_circle{ radius = 1 }.shapes[1].hit_sped", "shape: has no field 'hit_sped' (did you mean 'hit_speed'?)"},
       {"world:add_circle{ radius = 1 }.contacts()", "contacts: call it as body:contacts(), with a colon; got nil as the body"},
       {"world:ray_cast{ from = {0, 0} }", "ray_cast: to is required"},
-      {"world:ray_cast{ form = {0, 0}, to = {1, 0} }", "ray_cast: unknown option 'form' (did you mean 'from'?)"},
+      {"world:ray_cast{ from = {0, 0}, to = {1, 0}, sensor = true }",
+       "ray_cast: unknown option 'sensor' (did you mean 'sensors'?)"},
       {"world:ray_cast_all{ from = {0, 0}, to = {1, 0/0} }", "ray_cast_all: to must be finite, got (1, nan)"},
       {"world:ray_cast{ from = {0, 0}, to = {1, 0}, mask = 0.5 }",
        "ray_cast: mask must be an integer set of bits (e.g. 1 << 3, 0x8 or -1 for all 64), got 0.5"},
@@ -236,8 +237,10 @@ TEST_CASE("events and queries: mistakes are one message at the caller's line nam
        "ray_cast: not allowed while the world is stepping (from inside a force)"},
   };
   for (const auto& [line, message] : cases) {
-    CAPTURE(line);
-    const std::string m = errorOf(std::string("function PopulateWorld(world)\n  ") + line + "\nend", 1);
+    const std::string source = std::string("function PopulateWorld(world)\n  ") + line + "\nend";
+    CAPTURE(source);
+    const std::string m = errorOf(source, 1);
+    CAPTURE(m);
     CHECK(m.find('\n') == std::string::npos);
     CHECK(m.starts_with("test.lua:2: " + std::string(message)));
   }
