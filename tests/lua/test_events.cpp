@@ -8,30 +8,14 @@
 #include <vector>
 
 #include "rigidlab/lua/scene.h"
+#include "scene_test_util.h"
 
 using namespace rigidlab;
-using rigidlab::lua::Scene;
-using rigidlab::lua::SceneError;
+using lua::SceneError;
+using lua_test::errorOf;
+using lua_test::load;
 
 namespace {
-
-std::unique_ptr<Scene> load(const std::string& source) {
-  lua::SceneOptions options;
-  options.log = [](const std::string&) {};
-  return Scene::loadString(source, "test.lua", options);
-}
-
-// The message of the SceneError that loading, stepping `steps` times and checking throws.
-std::string errorOf(const std::string& source, int steps = 0) {
-  try {
-    auto scene = load(source);
-    for (int i = 0; i < steps; ++i) scene->step();
-    scene->runCheck();
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 // Boxes falling onto a floor: `options` go to every box.
 std::string boxes(int n, const std::string& options) {

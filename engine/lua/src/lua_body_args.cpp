@@ -44,8 +44,8 @@ const std::vector<std::string_view>& geometryOptions(ShapeKind kind) {
 void refuseOtherGeometry(const Options& o, ShapeKind kind, std::string_view more) {
   const auto& own = geometryOptions(kind);
   std::string takes;
-  for (std::string_view key : own) takes += std::string(key) + ", ";
-  takes += more;
+  for (std::string_view key : own) takes += (takes.empty() ? "" : ", ") + std::string(key);
+  if (!more.empty()) takes += ", " + std::string(more);
   for (std::string_view key : {"radius", "width", "height", "vertices", "a", "b"})
     if (o.has(key) && std::find(own.begin(), own.end(), key) == own.end())
       o.fail(key, std::string("is not an option of a ") + shapeKindName(kind) + " shape (it takes " + takes + ")");

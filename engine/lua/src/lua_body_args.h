@@ -18,7 +18,8 @@ const char* shapeKindName(ShapeKind kind);
 const std::vector<std::string_view>& geometryOptions(ShapeKind kind);
 
 // Refuses the geometry options of the other kinds ("width is not an option of a circle shape (it
-// takes radius, <more>)"): a width given to a circle is a mistake, not something to ignore.
+// takes radius, <more>)", `more` may be empty): a width given to a circle is a mistake, not
+// something to ignore.
 void refuseOtherGeometry(const Options& o, ShapeKind kind, std::string_view more);
 
 // The geometry of `kind` from its options (radius; width, height; vertices; a, b, radius), in

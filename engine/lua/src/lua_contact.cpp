@@ -8,33 +8,18 @@
 namespace rigidlab::lua {
 
 ContactView contactView(const World::ContactEvent& e) {
-  ContactView v;
-  v.a = e.a;
-  v.b = e.b;
-  v.shape_a = e.shape_a;
-  v.shape_b = e.shape_b;
-  v.point = e.point;
-  v.normal = e.normal;
-  v.approach_speed = e.approach_speed;
-  v.normal_impulse = e.normal_impulse;
-  v.tangent_impulse = e.tangent_impulse;
-  return v;
+  return {e.a, e.b, e.shape_a, e.shape_b, e.point, e.normal, e.approach_speed, e.normal_impulse, e.tangent_impulse};
 }
 
 ContactView contactView(const World& world, const ContactInfo& c) {
-  ContactView v;
-  v.a = c.a;
-  v.b = c.b;
-  v.shape_a = c.shape_a;
-  v.shape_b = c.shape_b;
-  v.normal = c.normal;
-  v.point = c.count == 2 ? Vec2(0.5 * (c.points[0] + c.points[1])) : c.points[0];
+  const Vec2 point = c.count == 2 ? Vec2(0.5 * (c.points[0] + c.points[1])) : c.points[0];
+  double normal_impulse = 0.0, tangent_impulse = 0.0;
   for (int i = 0; i < c.count; ++i) {
-    v.normal_impulse += c.normal_impulses[i];
-    v.tangent_impulse += c.tangent_impulses[i];
+    normal_impulse += c.normal_impulses[i];
+    tangent_impulse += c.tangent_impulses[i];
   }
-  v.approach_speed = -(world.body(c.b).pointVelocity(v.point) - world.body(c.a).pointVelocity(v.point)).dot(c.normal);
-  return v;
+  const double approach = -(world.body(c.b).pointVelocity(point) - world.body(c.a).pointVelocity(point)).dot(c.normal);
+  return {c.a, c.b, c.shape_a, c.shape_b, point, c.normal, approach, normal_impulse, tangent_impulse};
 }
 
 const char* contactEventKind(World::ContactEvent::Kind kind) {

@@ -79,6 +79,7 @@ void keepPreSolve(lua_State* L, Scene::Impl& scene, ShapeId id, const sol::objec
 }  // namespace
 
 void readShapeEventOptions(const Options& o, ShapeDef& def) {
+  if (!o.hasAny(api::kShapeEventOptions)) return;
   def.contact_events = o.boolean("contact_events", false);
   def.hit_speed = o.nonNegative("hit_speed", def.hit_speed);
   def.hit_events = o.boolean("hit_events", o.has("hit_speed"));
@@ -90,9 +91,7 @@ void readShapeEventOptions(const Options& o, ShapeDef& def) {
 }
 
 void attachShapeEvents(lua_State* L, Scene::Impl& scene, const Options& o, ShapeId id) {
-  bool any = false;
-  for (std::string_view key : api::kShapeEventOptions) any = any || o.has(key);
-  if (!any) return;
+  if (!o.hasAny(api::kShapeEventOptions)) return;
   ShapeDef d;
   readShapeEventOptions(o, d);  // checked already, before the shape was made
   World& w = *scene.world;

@@ -78,7 +78,7 @@ Shape queryShape(const Options& outer) {
   const ShapeKind kind = shapeKind(o, "shape");
   if (kind == ShapeKind::Segment)
     o.fail("shape", "\"segment\" cannot be used here: queries take a circle, box, polygon or capsule");
-  refuseOtherGeometry(o, kind, "nothing else");
+  refuseOtherGeometry(o, kind, "");
   return readGeometry(o, kind);
 }
 
