@@ -110,6 +110,10 @@ function Body:set_target(options) end
 ---@return rigidlab.Joint[]
 function Body:joints() end
 
+---The body's touching contacts now (approach_speed: the closing speed now; impulses: the last step's).
+---@return rigidlab.Contact[]
+function Body:contacts() end
+
 ---A shape of a body (body:add_shape returns one; body.shapes lists them).
 ---@class rigidlab.Shape
 ---@field kind "circle"|"polygon"|"capsule"|"segment"|"chain_segment" (read only)
@@ -130,6 +134,11 @@ function Body:joints() end
 ---@field mask integer the categories it collides with; -1 (every bit) by default (read/write)
 ---@field group integer same positive group: always collide; same negative group: never (read/write)
 ---@field removed boolean (read only)
+---@field contact_events boolean its contacts' begin and end are reported (OnContactBegin, OnContactEnd) (read/write)
+---@field hit_events boolean impacts of at least hit_speed are reported (OnHit) (read/write)
+---@field hit_speed number m/s ≥ 0: the closing speed that makes a hit (read/write)
+---@field one_way rigidlab.Vec2|nil a one-way platform: the unit normal of the side to stand on, body coordinates (read/write)
+---@field pre_solve fun(contact: rigidlab.Contact): boolean|nil|nil called during the step for its contacts; false disables the contact this step (read/write)
 local Shape = {}
 
 ---Removes the shape from its body (no-op if already removed); the body's mass is recomputed.
@@ -234,6 +243,11 @@ function ForceHandle:remove() end
 ---@field category? integer 64-bit category bits, default 1 (a float with a whole value is taken too)
 ---@field mask? integer 64-bit bits of the categories it collides with, default -1 (all)
 ---@field group? integer 32-bit: same positive group always collides, same negative never; default 0
+---@field contact_events? boolean default false: report its contacts' begin and end
+---@field hit_events? boolean default false (true when hit_speed is given): report impacts
+---@field hit_speed? number m/s ≥ 0, default 1: the closing speed of a hit
+---@field one_way? rigidlab.VecLike a one-way platform: the side to stand on, body coordinates (normalised)
+---@field pre_solve? fun(contact: rigidlab.Contact): boolean|nil called during the step for its contacts; false disables the contact this step
 
 ---A body with one shape (add_box, add_circle, add_polygon, add_capsule, add_segment, add_chain).
 ---@class rigidlab.ShapedBodyOptions: rigidlab.BodyOptions, rigidlab.ShapeOptions
@@ -630,3 +644,141 @@ function OnDraw(draw) end
 ---@param t number
 ---@return table<string|rigidlab.Body, rigidlab.ExactState>
 function Exact(t) end
+
+-- --- events and queries
+
+---A contact, as event hooks, pre_solve functions, body:contacts() and world:contact_events() give it.
+---@class rigidlab.Contact
+---@field a rigidlab.Body|nil nil if the body was removed since
+---@field b rigidlab.Body|nil
+---@field shape_a rigidlab.Shape
+---@field shape_b rigidlab.Shape
+---@field point rigidlab.Vec2 world; the middle of the contact's points
+---@field normal rigidlab.Vec2 unit, from a to b
+---@field approach_speed number m/s, > 0 approaching: events at the start of the step, otherwise now
+---@field normal_impulse number N·s the step applied (0 in pre_solve)
+---@field tangent_impulse number N·s
+---@field kind "begin"|"end"|"hit"|nil world:contact_events() only
+
+---A hit of world:ray_cast, ray_cast_all or shape_cast.
+---@class rigidlab.QueryHit
+---@field body rigidlab.Body
+---@field shape rigidlab.Shape
+---@field point rigidlab.Vec2 world
+---@field normal rigidlab.Vec2 the surface's outward unit normal there
+---@field fraction number 0..1 along from → to (shape_cast: the time of impact)
+
+---The filter every query takes.
+---@class rigidlab.QueryFilterOptions
+---@field category? integer default 1: found shapes have (shape.mask & category) ~= 0
+---@field mask? integer default -1: found shapes have (shape.category & mask) ~= 0
+---@field sensors? boolean default false: sensors are left out
+
+---@class rigidlab.RayCastOptions: rigidlab.QueryFilterOptions
+---@field from rigidlab.VecLike
+---@field to rigidlab.VecLike
+
+---@class rigidlab.QueryBoxOptions: rigidlab.QueryFilterOptions
+---@field lower rigidlab.VecLike
+---@field upper rigidlab.VecLike
+
+---@class rigidlab.QueryPointOptions: rigidlab.QueryFilterOptions
+---@field point rigidlab.VecLike
+
+---A shape for queries: as body:add_shape takes it (no segment).
+---@class rigidlab.QueryShape
+---@field shape "circle"|"box"|"polygon"|"capsule"
+---@field radius? number
+---@field width? number
+---@field height? number
+---@field vertices? rigidlab.VecLike[]
+---@field a? rigidlab.VecLike
+---@field b? rigidlab.VecLike
+
+---@class rigidlab.OverlapOptions: rigidlab.QueryFilterOptions
+---@field shape rigidlab.QueryShape
+---@field position? rigidlab.VecLike default {0, 0}
+---@field angle? number default 0
+
+---@class rigidlab.ShapeCastOptions: rigidlab.QueryFilterOptions
+---@field shape rigidlab.QueryShape
+---@field from rigidlab.VecLike where the shape starts
+---@field to rigidlab.VecLike where it would end
+---@field angle? number default 0
+
+---@class rigidlab.ExplodeOptions
+---@field position rigidlab.VecLike
+---@field radius? number m > 0, default 1: full impulse within it
+---@field falloff? number m ≥ 0, default 0: the impulse falls linearly to 0 at radius + falloff
+---@field impulse? number N·s per metre of the width a shape shows to the centre, ≥ 0, default 1
+---@field category? integer
+---@field mask? integer
+
+---This step's contact events (begin, end, hit), by shape pair.
+---@return rigidlab.Contact[]
+function World:contact_events() end
+
+---The closest hit of the segment from → to, or nil.
+---@param options rigidlab.RayCastOptions
+---@return rigidlab.QueryHit|nil
+function World:ray_cast(options) end
+
+---Every hit of the segment, by fraction.
+---@param options rigidlab.RayCastOptions
+---@return rigidlab.QueryHit[]
+function World:ray_cast_all(options) end
+
+---The shapes overlapping the box.
+---@param options rigidlab.QueryBoxOptions
+---@return rigidlab.Shape[]
+function World:query_box(options) end
+
+---The shapes containing the point.
+---@param options rigidlab.QueryPointOptions
+---@return rigidlab.Shape[]
+function World:query_point(options) end
+
+---The shapes overlapping a shape placed at position, angle.
+---@param options rigidlab.OverlapOptions
+---@return rigidlab.Shape[]
+function World:overlap(options) end
+
+---The first shape a moving shape touches, or nil.
+---@param options rigidlab.ShapeCastOptions
+---@return rigidlab.QueryHit|nil
+function World:shape_cast(options) end
+
+---Pushes the dynamic bodies near position away from it; returns them.
+---@param options rigidlab.ExplodeOptions
+---@return rigidlab.Body[]
+function World:explode(options) end
+
+---Optional event hooks, called after every step (Scene step, not world:step()) and before OnStep,
+---in this order: contact events by shape pair (OnContactBegin, OnContactEnd, OnHit), then sensor
+---events by sensor and visitor, then joint breaks. The world may be edited inside them; every
+---argument is made before the first hook runs.
+---@param world rigidlab.World
+---@param contact rigidlab.Contact
+function OnContactBegin(world, contact) end
+
+---@param world rigidlab.World
+---@param contact rigidlab.Contact
+function OnContactEnd(world, contact) end
+
+---@param world rigidlab.World
+---@param contact rigidlab.Contact
+function OnHit(world, contact) end
+
+---@param world rigidlab.World
+---@param sensor rigidlab.Shape
+---@param visitor rigidlab.Shape
+function OnSensorBegin(world, sensor, visitor) end
+
+---@param world rigidlab.World
+---@param sensor rigidlab.Shape
+---@param visitor rigidlab.Shape
+function OnSensorEnd(world, sensor, visitor) end
+
+---@param world rigidlab.World
+---@param joint rigidlab.Joint removed by the core when it broke: kind, broken and removed are readable
+function OnJointBreak(world, joint) end

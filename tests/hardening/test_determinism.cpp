@@ -60,6 +60,13 @@ const Golden kGolden[] = {
     {"tests/scenes/lua_spring_twin.lua", "ad804d90435d3a9c"},
     {"tests/scenes/regression_far_body.lua", "8b5d76f4f74135f6"},
     {"tests/scenes/vec2_api.lua", "31dd1a62c493ba98"},
+// Events and queries (issue 14): Lua-side only, the hashes above are unchanged.
+    {"scripts/scenes/explosion.lua", "86afc6606d7f221e"},
+    {"scripts/scenes/laser_turret.lua", "f7308973649491d9"},
+    {"scripts/scenes/platformer.lua", "dc7dc666cd2912eb"},
+    {"scripts/scenes/vase.lua", "d47265374f5438ff"},
+    {"tests/scenes/lua_events.lua", "fa310c703abd3af2"},
+    {"tests/scenes/lua_queries.lua", "b9f44982e9d25a81"},
 };
 // clang-format on
 

@@ -153,6 +153,11 @@ const std::vector<Option> kStaticOptions = {
 const std::vector<Option> kMaterialOptions = {
     {"restitution", Accepts::Unit}, {"friction", Accepts::NonNegative}, {"static_friction", Accepts::NonNegative},
     {"sensor", Accepts::Boolean}, {"category", Accepts::Bits}, {"mask", Accepts::Bits}, {"group", Accepts::Int32}};
+// The event options of a shape (lua_events.cpp), options and shape fields alike: every vector of
+// the pool is a direction (none is zero).
+const std::vector<Option> kEventOptions = {
+    {"contact_events", Accepts::Boolean}, {"hit_events", Accepts::Boolean}, {"hit_speed", Accepts::NonNegative},
+    {"one_way", Accepts::Vector}, {"pre_solve", Accepts::Function}};
 
 std::vector<Option> plus(std::vector<Option> a, std::vector<Option> b) {
   a.insert(a.end(), b.begin(), b.end());
@@ -160,7 +165,7 @@ std::vector<Option> plus(std::vector<Option> a, std::vector<Option> b) {
 }
 
 const std::vector<Option> kBodyOptions =
-    plus(plus(kMovingOptions, kMaterialOptions),
+    plus(plus(plus(kMovingOptions, kMaterialOptions), kEventOptions),
          {{"mass", Accepts::Positive}, {"static", Accepts::Boolean}, {"type", Accepts::BodyType}});
 // Options every joint takes.
 const std::vector<Option> kJointOptions = {{"collide_connected", Accepts::Boolean},
@@ -182,17 +187,18 @@ const Function kFunctions[] = {
     {"add_capsule", "world:add_capsule{ a = {0, 0}, b = {1, 0}, radius = 0.5, $ }",
      plus(kBodyOptions, {{"a", Accepts::Vector}, {"b", Accepts::Vector}, {"radius", Accepts::Positive}, {"density", Accepts::Positive}})},
     {"add_segment", "world:add_segment{ a = {0, 0}, b = {1, 0}, type = 'kinematic', $ }",
-     plus(plus(kMovingOptions, kMaterialOptions), {{"a", Accepts::Vector}, {"b", Accepts::Vector}})},
+     plus(plus(plus(kMovingOptions, kMaterialOptions), kEventOptions), {{"a", Accepts::Vector}, {"b", Accepts::Vector}})},
     {"add_segment", "world:add_segment{ a = {0, 0}, b = {1, 0}, $ }",
      plus(kStaticOptions, {{"type", Accepts::BodyType}, {"mass", Accepts::Never}, {"density", Accepts::Never}})},
     {"add_chain", "world:add_chain{ points = {{0, 0}, {1, 0}, {1, 1}}, $ }",
-     plus(plus(kStaticOptions, kMaterialOptions), {{"type", Accepts::StaticType}, {"loop", Accepts::Boolean},
+     plus(plus(plus(kStaticOptions, kMaterialOptions), kEventOptions), {{"type", Accepts::StaticType}, {"loop", Accepts::Boolean},
                                                    {"mass", Accepts::Never}, {"density", Accepts::Never}})},
     {"add_body", "world:add_body{ $ }",
      plus(kMovingOptions, {{"static", Accepts::Boolean}, {"type", Accepts::BodyType}, {"mass", Accepts::Never},
-                           {"density", Accepts::Never}, {"friction", Accepts::Never}, {"category", Accepts::Never}})},
+                           {"density", Accepts::Never}, {"friction", Accepts::Never}, {"category", Accepts::Never},
+                           {"contact_events", Accepts::Never}, {"one_way", Accepts::Never}, {"pre_solve", Accepts::Never}})},
     {"add_shape", "nil_body:add_shape{ shape = 'box', width = 1, height = 1, $ }",
-     plus(kMaterialOptions, {{"width", Accepts::Positive}, {"height", Accepts::Positive}, {"offset", Accepts::Vector},
+     plus(plus(kMaterialOptions, kEventOptions), {{"width", Accepts::Positive}, {"height", Accepts::Positive}, {"offset", Accepts::Vector},
                              {"angle", Accepts::Finite}, {"density", Accepts::Positive}, {"shape", Accepts::Never},
                              {"radius", Accepts::Never}})},
     {"add_shape", "nil_body:add_shape{ shape = 'circle', radius = 1, $ }", {{"radius", Accepts::Positive}}},
@@ -247,6 +253,23 @@ const Function kFunctions[] = {
     {"add_force", "world:add_force{ body = nil_body, evaluate = function(s) return 0, 0 end, $ }",
      {{"body", Accepts::Body}, {"duration", Accepts::Positive}, {"point", Accepts::Vector}, {"other", Accepts::OtherBody}}},
     {"add_force", "world:add_force{ body = nil_body, $ }", {{"evaluate", Accepts::Function}}},
+    // --- queries (lua_query.cpp)
+    {"ray_cast", "world:ray_cast{ from = {0, 0}, to = {1, 0}, $ }",
+     {{"from", Accepts::Vector}, {"to", Accepts::Vector}, {"category", Accepts::Bits}, {"mask", Accepts::Bits},
+      {"sensors", Accepts::Boolean}}},
+    {"ray_cast_all", "world:ray_cast_all{ from = {0, 0}, to = {1, 0}, $ }",
+     {{"from", Accepts::Vector}, {"to", Accepts::Vector}, {"sensors", Accepts::Boolean}}},
+    {"query_box", "world:query_box{ lower = {-1e9, -1e9}, upper = {1e9, 1e9}, $ }",
+     {{"lower", Accepts::Vector}, {"upper", Accepts::Vector}, {"mask", Accepts::Bits}}},
+    {"query_point", "world:query_point{ point = {0, 0}, $ }", {{"point", Accepts::Vector}, {"category", Accepts::Bits}}},
+    {"overlap", "world:overlap{ shape = { shape = 'circle', radius = 1 }, $ }",
+     {{"position", Accepts::Vector}, {"angle", Accepts::Finite}, {"shape", Accepts::Never}}},
+    {"shape_cast", "world:shape_cast{ shape = { shape = 'box', width = 1, height = 1 }, from = {0, 5}, to = {0, 6}, $ }",
+     {{"from", Accepts::Vector}, {"to", Accepts::Vector}, {"angle", Accepts::Finite}, {"shape", Accepts::Never}}},
+    {"explode", "world:explode{ position = {0, 0}, $ }",
+     {{"position", Accepts::Vector}, {"radius", Accepts::Positive}, {"falloff", Accepts::NonNegative},
+      {"category", Accepts::Bits}, {"mask", Accepts::Bits}}},
+    {"explode", "world:explode{ position = {0, 0}, radius = 0.1, $ }", {{"impulse", Accepts::NonNegative}}},
 };
 
 // A repeated key in a table constructor: the later value wins, so "$" can override a base option.
@@ -308,8 +331,10 @@ TEST_CASE("validation: every option of every add_* function, given every pool va
           CHECK(m == "");
           ++accepted;
         } else {
-          // "test.lua:4: add_box: width must be > 0, got -1"
-          CHECK(m.starts_with("test.lua:4: " + std::string(f.name) + ": " + o.name + " "));
+          // "test.lua:4: add_box: width must be > 0, got -1"; a table of options given as an option
+          // names its own mistakes after it: "overlap: shape: radius must be > 0, got -1".
+          const std::string field = "test.lua:4: " + std::string(f.name) + ": " + o.name;
+          CHECK((m.starts_with(field + " ") || m.starts_with(field + ": ")));
           CHECK(clean(m));
           ++refused;
         }
@@ -376,7 +401,7 @@ void checkWrites(const char* what, const std::string& handle, const std::vector<
   }
 }
 
-const std::vector<Option> kShapeFields = plus(kMaterialOptions, {{"density", Accepts::Positive}});
+const std::vector<Option> kShapeFields = plus(plus(kMaterialOptions, kEventOptions), {{"density", Accepts::Positive}});
 
 TEST_CASE("validation: writes to every writable body field, the same way") {
   checkWrites("body", "nil_body",

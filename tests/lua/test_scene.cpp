@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "rigidlab/lua/scene.h"
+#include "scene_test_util.h"
 
 using namespace rigidlab;
 using rigidlab::lua::Scene;
@@ -15,22 +16,8 @@ using rigidlab::lua::SceneError;
 
 namespace {
 
-std::unique_ptr<Scene> load(const std::string& source, lua::SceneOptions options = {}) {
-  if (!options.log) options.log = [](const std::string&) {};
-  return Scene::loadString(source, "test.lua", options);
-}
-
-// The message of the SceneError that loading (and, if given, stepping) the scene throws.
-std::string errorOf(const std::string& source, int steps = 0) {
-  try {
-    auto scene = load(source);
-    for (int i = 0; i < steps; ++i) scene->step();
-    scene->runCheck();
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using lua_test::errorOf;
+using lua_test::load;
 
 // Oscillator k = 4π², m = 1, x0 = 0.1 with the spring written in Lua; L∞ position error over the
 // 0.1 s grid up to 10.1 s, relative to x0.

@@ -14,7 +14,7 @@ inline const std::vector<std::string_view> kBodyReadable = {
     "friction", "static_friction", "awake", "id", "center", "local_center", "inertia", "density", "shape", "radius",
     "vertices", "shapes", "removed", "linear_damping", "angular_damping", "gravity_scale", "fixed_rotation", "bullet",
     "enabled", "user_data", "sensor", "category", "mask", "group", "apply_impulse", "apply_force", "add_shape",
-    "set_target", "joints"};
+    "set_target", "joints", "contacts"};
 inline const std::vector<std::string_view> kBodyWritable = {
     "position", "angle", "velocity", "angular_velocity", "mass", "static", "type", "name", "restitution",
     "friction", "static_friction", "awake", "linear_damping", "angular_damping", "gravity_scale", "fixed_rotation",
@@ -23,9 +23,9 @@ inline const std::vector<std::string_view> kBodyWritable = {
 // shape.<field> (body:add_shape returns a shape; body.shapes lists them).
 inline const std::vector<std::string_view> kShapeReadable = {
     "kind", "body", "radius", "center", "vertices", "a", "b", "density", "mass", "area", "restitution", "friction",
-    "static_friction", "sensor", "category", "mask", "group", "removed", "remove"};
+    "static_friction", "sensor", "category", "mask", "group", "removed", "remove", "contact_events", "hit_events", "hit_speed", "one_way", "pre_solve"};
 inline const std::vector<std::string_view> kShapeWritable = {"density", "restitution", "friction", "static_friction",
-                                                            "sensor", "category", "mask", "group"};
+                                                            "sensor", "category", "mask", "group", "contact_events", "hit_events", "hit_speed", "one_way", "pre_solve"};
 
 inline const std::vector<std::string_view> kWorldFields = {"gravity", "integrator", "dt", "solver", "iterations",
                                                            "substeps", "sleeping", "time", "step_count", "title"};
@@ -33,7 +33,7 @@ inline const std::vector<std::string_view> kWorldMethods = {
     "add_body", "add_box", "add_circle", "add_polygon", "add_capsule", "add_segment", "add_chain", "add_spring",
     "add_damper", "add_force", "add_revolute", "add_prismatic", "add_distance", "add_weld", "add_wheel",
     "add_motor_joint", "add_friction_joint", "add_pulley", "add_gear", "bodies", "find", "joints", "find_joint",
-    "remove", "step", "kinetic_energy", "potential_energy"};
+    "remove", "step", "kinetic_energy", "potential_energy", "contact_events", "ray_cast", "ray_cast_all", "query_box", "query_point", "overlap", "shape_cast", "explode"};
 
 // What every function that makes a body takes (add_body takes only these).
 inline const std::vector<std::string_view> kBodyOptions = {
@@ -41,7 +41,7 @@ inline const std::vector<std::string_view> kBodyOptions = {
     "angular_damping", "gravity_scale", "fixed_rotation", "bullet", "enabled", "user_data"};
 // The options of a shape: body:add_shape{} and, for their one shape, add_box, add_circle, ...
 inline const std::vector<std::string_view> kShapeOptions = {"density", "restitution", "friction", "static_friction",
-                                                            "sensor", "category", "mask", "group"};
+                                                            "sensor", "category", "mask", "group", "contact_events", "hit_events", "hit_speed", "one_way", "pre_solve"};
 // The one-shape world:add_* functions take kBodyOptions, kShapeOptions, these and their geometry.
 inline const std::vector<std::string_view> kShapedBodyOptions = {"mass"};
 inline const std::vector<std::string_view> kBoxOptions = {"width", "height"};
@@ -115,5 +115,29 @@ inline std::vector<std::string_view> jointOwnFields(const std::vector<std::strin
   if (limits) own.push_back("set_limits");
   return own;
 }
+
+// --- events and queries (lua_events.cpp, lua_contact.cpp, lua_query.cpp)
+// The shape options and fields of events (also in kShapeOptions, kShapeReadable, kShapeWritable).
+inline const std::vector<std::string_view> kShapeEventOptions = {"contact_events", "hit_events", "hit_speed", "one_way",
+                                                                 "pre_solve"};
+// The hooks a scene may define for the events of a step, in the order they are called.
+inline const std::vector<std::string_view> kEventHooks = {"OnContactBegin", "OnContactEnd",   "OnHit",
+                                                          "OnSensorBegin",  "OnSensorEnd",    "OnJointBreak"};
+// A contact as hooks, pre_solve functions, body:contacts() and world:contact_events() give it
+// (the events also have `kind`).
+inline const std::vector<std::string_view> kContactFields = {"a", "b", "shape_a", "shape_b", "point", "normal",
+                                                             "approach_speed", "normal_impulse", "tangent_impulse"};
+// A hit of a ray or shape cast.
+inline const std::vector<std::string_view> kQueryHitFields = {"body", "shape", "point", "normal", "fraction"};
+// The filter every query takes.
+inline const std::vector<std::string_view> kQueryFilterOptions = {"category", "mask", "sensors"};
+inline const std::vector<std::string_view> kRayCastOptions = {"from", "to"};
+inline const std::vector<std::string_view> kQueryBoxOptions = {"lower", "upper"};
+inline const std::vector<std::string_view> kQueryPointOptions = {"point"};
+inline const std::vector<std::string_view> kOverlapOptions = {"shape", "position", "angle"};
+inline const std::vector<std::string_view> kShapeCastOptions = {"shape", "from", "to", "angle"};
+// The shape of overlap{} and shape_cast{}: add_shape's kind and geometry.
+inline const std::vector<std::string_view> kQueryShapeOptions = {"shape", "radius", "width", "height", "vertices", "a", "b"};
+inline const std::vector<std::string_view> kExplodeOptions = {"position", "radius", "falloff", "impulse", "category", "mask"};
 
 }  // namespace rigidlab::lua::api

@@ -42,6 +42,10 @@ struct Scene::Impl {
   sol::object world_handle; // the `world` passed to hooks
   sol::object draw_handle;  // the `draw` passed to OnDraw
   LuaDraw* draw = nullptr;  // draw_handle's object
+  // --- events (lua_events.cpp): the event hooks, or nil; the shapes' pre_solve functions (shape
+  // key → function), made on first use, so a scene without them holds nothing for events.
+  sol::object on_contact_begin, on_contact_end, on_hit, on_sensor_begin, on_sensor_end, on_joint_break;
+  sol::table pre_solve_functions;
 };
 
 // Handles are full userdata holding these plain structs, with metatables of the host's own

@@ -212,6 +212,19 @@ Options::Options(lua_State* L, std::string_view function, const sol::object& arg
 
 bool Options::has(std::string_view key) const { return get(key).get_type() != sol::type::lua_nil; }
 
+bool Options::hasAny(const std::vector<std::string_view>& keys) const {
+  table_.push(L_);
+  bool any = false;
+  for (std::string_view key : keys) {
+    lua_pushlstring(L_, key.data(), key.size());
+    any = lua_rawget(L_, -2) != LUA_TNIL;
+    lua_pop(L_, 1);
+    if (any) break;
+  }
+  lua_pop(L_, 1);
+  return any;
+}
+
 sol::object Options::get(std::string_view key) const { return table_.raw_get<sol::object>(key); }
 
 void Options::fail(std::string_view key, const std::string& message) const {

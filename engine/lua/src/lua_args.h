@@ -121,6 +121,9 @@ class Options {
           const Synonyms& synonyms = {});
 
   bool has(std::string_view key) const;
+  // Whether any of `keys` is given: raw lookups that make no Lua object (a check that costs about
+  // as little as the options it skips when none is given).
+  bool hasAny(const std::vector<std::string_view>& keys) const;
   sol::object get(std::string_view key) const;
 
   double number(std::string_view key, std::optional<double> fallback = std::nullopt) const;  // finite

@@ -9,7 +9,7 @@
 //   methods     body:apply_impulse(j [, point])          point: world, default the centre of mass
 //               body:apply_force(f [, point [, duration]])  duration default: the next step only
 //               body:add_shape{...} (lua_shape.cpp), body:set_target{position, angle, time},
-//               body:joints() (lua_joint.cpp)
+//               body:joints() (lua_joint.cpp), body:contacts() (lua_contact.cpp)
 // A misspelt field is an error naming the closest valid one.
 #include <algorithm>
 
@@ -17,6 +17,7 @@
 #include "bindings.h"
 #include "lua_args.h"
 #include "lua_body_args.h"
+#include "lua_contact.h"
 #include "lua_joint.h"
 #include "lua_shape.h"
 #include "rigidlab/error.h"
@@ -110,7 +111,8 @@ lua_CFunction bodyMethod(std::string_view name) {
                                            {"apply_force", guarded<applyForce>},
                                            {"add_shape", addShapeMethod},
                                            {"set_target", guarded<setTarget>},
-                                           {"joints", bodyJointsMethod}};
+                                           {"joints", bodyJointsMethod},
+                                           {"contacts", bodyContactsMethod}};
   return lookUp(kMethods, name);
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "bindings.h"
+#include "lua_events.h"
 #include "rigidlab/error.h"
 #include "rigidlab/lua/scene_text.h"
 
@@ -38,6 +39,16 @@ const std::vector<std::string_view>& geometryOptions(ShapeKind kind) {
       return segment;
   }
   return circle;
+}
+
+void refuseOtherGeometry(const Options& o, ShapeKind kind, std::string_view more) {
+  const auto& own = geometryOptions(kind);
+  std::string takes;
+  for (std::string_view key : own) takes += (takes.empty() ? "" : ", ") + std::string(key);
+  if (!more.empty()) takes += ", " + std::string(more);
+  for (std::string_view key : {"radius", "width", "height", "vertices", "a", "b"})
+    if (o.has(key) && std::find(own.begin(), own.end(), key) == own.end())
+      o.fail(key, std::string("is not an option of a ") + shapeKindName(kind) + " shape (it takes " + takes + ")");
 }
 
 Shape readGeometry(const Options& o, ShapeKind kind) {
@@ -132,6 +143,7 @@ ShapeDef readShapeOptions(const Options& o, bool area) {
   d.material.static_friction = o.nonNegative("static_friction", d.material.friction);
   d.sensor = o.boolean("sensor", false);
   d.filter = readFilter(o, Filter{});
+  readShapeEventOptions(o, d);
   return d;
 }
 

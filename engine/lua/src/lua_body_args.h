@@ -17,6 +17,11 @@ const char* shapeKindName(ShapeKind kind);
 // The geometry options of a kind, in the order messages list them.
 const std::vector<std::string_view>& geometryOptions(ShapeKind kind);
 
+// Refuses the geometry options of the other kinds ("width is not an option of a circle shape (it
+// takes radius, <more>)", `more` may be empty): a width given to a circle is a mistake, not
+// something to ignore.
+void refuseOtherGeometry(const Options& o, ShapeKind kind, std::string_view more);
+
 // The geometry of `kind` from its options (radius; width, height; vertices; a, b, radius), in
 // body coordinates. Core refusals become errors of the function, naming the option.
 Shape readGeometry(const Options& o, ShapeKind kind);
@@ -29,7 +34,7 @@ BodyDef readBodyDef(const Options& o, BodyType fallback);
 BodyType bodyType(lua_State* L, std::string_view function, std::string_view subject, const sol::object& value);
 
 // The shape options of api::kShapeOptions: density, restitution, friction, static_friction,
-// sensor, category, mask, group (def.shape is left empty). `area`: false for a segment or chain,
+// sensor, category, mask, group and the event options (readShapeEventOptions; def.shape is left empty). `area`: false for a segment or chain,
 // which has no density (giving one is refused, saying why).
 ShapeDef readShapeOptions(const Options& o, bool area);
 // The collision filter options alone (category, mask, group), over `fallback`.

@@ -3,7 +3,8 @@
 //   read        kind ("circle" | "polygon" | "capsule" | "segment" | "chain_segment"), body,
 //               radius (circles, capsules), center (centroid, body coordinates), vertices
 //               (polygons), a, b (capsules, segments, chain segments), mass, area, removed
-//   read/write  density, restitution, friction, static_friction, sensor, category, mask, group
+//   read/write  density, restitution, friction, static_friction, sensor, category, mask, group;
+//               the event fields contact_events, hit_events, hit_speed, one_way, pre_solve (lua_events.cpp)
 //   method      shape:remove()
 // The shape properties of a body (body.friction, body.category, ...) read and write the same
 // values for all of its shapes (shapeProperty, setShapeProperty).
@@ -15,6 +16,7 @@
 #include "bindings.h"
 #include "lua_args.h"
 #include "lua_body_args.h"
+#include "lua_events.h"
 #include "rigidlab/error.h"
 
 namespace rigidlab::lua {
@@ -29,13 +31,6 @@ const LuaShape& selfShape(lua_State* L, std::string_view function) {
   return *s;
 }
 
-// The geometry options a kind takes, for messages: "radius, offset and angle".
-std::string takes(ShapeKind kind) {
-  std::string list;
-  for (std::string_view key : geometryOptions(kind)) list += std::string(key) + ", ";
-  return list + "offset and angle";
-}
-
 int addShape(lua_State* L) {
   const LuaBody* handle = toHandle<LuaBody>(L, 1);
   if (!handle)
@@ -45,13 +40,7 @@ int addShape(lua_State* L) {
   const BodyId body = liveBody(L, *handle, "add_shape");
   const Options o(L, "add_shape", sol::stack_object(L, 2), joined({&api::kAddShapeOptions, &api::kShapeOptions}));
   const ShapeKind kind = shapeKind(o, "shape");
-  // A width given to a circle is a mistake, not something to ignore.
-  for (std::string_view key : {"radius", "width", "height", "vertices", "a", "b"}) {
-    const auto& own = geometryOptions(kind);
-    if (o.has(key) && std::find(own.begin(), own.end(), key) == own.end())
-      o.fail(key,
-             std::string("is not an option of a ") + shapeKindName(kind) + " shape (it takes " + takes(kind) + ")");
-  }
+  refuseOtherGeometry(o, kind, "offset and angle");
   World& world = *scene.world;
   ShapeDef def = readShapeOptions(o, kind != ShapeKind::Segment);
   def.shape = readGeometry(o, kind);
@@ -69,6 +58,7 @@ int addShape(lua_State* L) {
     failCore(L, "add_shape", e);
   }
   try {
+    attachShapeEvents(L, scene, o, id);
     scene.host->charge(L, "add_shape", shapeHostBytes(world.shape(id)));
   } catch (...) {
     world.destroyShape(id);  // over the memory limit: as if it had not been made
@@ -133,7 +123,7 @@ int shapeIndex(lua_State* L) {
     lua_pushnumber(L, hasArea(g.type) ? computeMass(g, s.density).mass : 0.0);
   } else if (k == "area") {
     lua_pushnumber(L, hasArea(g.type) ? computeMass(g, 1.0).area : 0.0);
-  } else {
+  } else if (!pushShapeEventField(L, *self.scene, s, k)) {
     shapeProperty(L, s, k).push(L);
   }
   return 1;
@@ -147,7 +137,9 @@ int shapeNewIndex(lua_State* L) {
   requireWritable(L, "shape", k, kShapeReadable, kShapeWritable);
   requireIdle(L, *self.scene, function);
   World& w = liveWorld(L, *self.scene, function);
-  setShapeProperty(L, w, liveShape(L, self, function), function, k, sol::stack_object(L, 3));
+  const ShapeId id = liveShape(L, self, function);
+  if (!setShapeEventField(L, *self.scene, id, function, k, sol::stack_object(L, 3)))
+    setShapeProperty(L, w, id, function, k, sol::stack_object(L, 3));
   return 0;
 }
 
@@ -217,6 +209,7 @@ ShapeId liveShape(lua_State* L, const LuaShape& shape, std::string_view function
 void removeShape(lua_State* L, Scene::Impl& scene, ShapeId id) {
   World& w = liveWorld(L, scene, "remove");
   const size_t bytes = shapeHostBytes(w.shape(id));
+  forgetShapeEvents(scene, id);
   w.destroyShape(id);
   scene.host->release(bytes);
 }

@@ -11,7 +11,9 @@
 #include "api_names.h"
 #include "bindings.h"
 #include "lua_args.h"
+#include "lua_events.h"
 #include "lua_force.h"
+#include "lua_query.h"
 #include "lua_shape.h"
 #include "rigidlab/error.h"
 #include "rigidlab/lua/scene_text.h"
@@ -124,6 +126,7 @@ int remove(lua_State* L) {
       if (b.scene != &scene) fail(L, "remove", "the body belongs to another scene");
       const BodyId id = liveBody(L, b, "remove");
       const size_t bytes = hostBytes(*scene.world, scene.world->body(id));
+      for (const ShapeId s : scene.world->body(id).shapes) forgetShapeEvents(scene, s);
       scene.world->destroyBody(id);
       scene.host->release(bytes);
       scene.handles.raw_set(b.uid, sol::lua_nil);
@@ -187,6 +190,7 @@ lua_CFunction ownMethod(std::string_view name) {
 sol::object method(lua_State* L, std::string_view name) {
   lua_CFunction f = bodyWorldMethod(name);
   if (!f) f = jointWorldMethod(name);
+  if (!f) f = queryWorldMethod(name);
   if (!f) f = ownMethod(name);
   if (!f) return sol::make_object(L, sol::lua_nil);
   lua_pushcfunction(L, f);

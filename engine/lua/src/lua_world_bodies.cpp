@@ -12,6 +12,7 @@
 #include "api_names.h"
 #include "bindings.h"
 #include "lua_body_args.h"
+#include "lua_events.h"
 #include "rigidlab/error.h"
 
 namespace rigidlab::lua {
@@ -24,10 +25,11 @@ constexpr size_t kMaxConcavePoints = 256;
 // A chain's segments are made in one call (and their host memory charged after it).
 constexpr size_t kMaxChainPoints = 65536;
 
-// Charges the body's host memory and keeps its user_data; over the memory limit the body is
-// removed again, as if it had not been made.
+// Gives its shapes their event options, charges the body's host memory and keeps its user_data;
+// over the memory limit the body is removed again, as if it had not been made.
 void finishBody(lua_State* L, Scene::Impl& scene, const Options& o, BodyId id) {
   try {
+    for (const ShapeId shape : scene.world->body(id).shapes) attachShapeEvents(L, scene, o, shape);
     scene.host->charge(L, o.function(), hostBytes(*scene.world, scene.world->body(id)));
   } catch (...) {
     scene.world->destroyBody(id);

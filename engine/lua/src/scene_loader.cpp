@@ -8,6 +8,7 @@
 #include "api_names.h"
 #include "bindings.h"
 #include "lua_args.h"
+#include "lua_events.h"
 #include "rigidlab/error.h"
 #include "rigidlab/lua/data_directory.h"
 #include "rigidlab/lua/scene_text.h"
@@ -128,6 +129,16 @@ void call(Scene::Impl& s, const sol::object& f, std::string_view name, const Arg
   if (error) throw SceneError(*error);
 }
 
+// --- event hooks (lua_events.h): called after a step, before OnStep, each under its own budget.
+void deliverEvents(Scene::Impl& s) {
+  bool any = false;
+  for (const EventHook& h : eventHooks()) any = any || defined(s.*h.slot);
+  if (!any) return;  // no Lua call, nothing made
+  std::vector<EventCall> calls;
+  if (auto error = s.host->run([&] { calls = eventCalls(s); })) throw SceneError(s.host->errorText(*error, "events"));
+  for (const EventCall& c : calls) call(s, *c.hook, c.name, s.world_handle, c.first, c.second);
+}
+
 // The steps of load() that touch the state, each inside ScriptHost::run.
 void setUp(Scene::Impl& s) {
   lua_State* L = s.host->L();
@@ -201,6 +212,7 @@ std::unique_ptr<Scene::Impl> load(std::string_view source, const std::string& na
     s->on_key = hook(*s, "OnKey");
     s->on_draw = hook(*s, "OnDraw");
     s->exact = hook(*s, "Exact");
+    for (const EventHook& h : eventHooks()) (*s).*h.slot = hook(*s, h.name.data());
   });
   if (error) throw SceneError(name + ": " + host.errorText(*error, ""));
   if (!defined(populate))
@@ -249,6 +261,8 @@ Scene::Impl::~Impl() {
   // closes.
   world.reset();
   on_step = check = on_key = on_draw = exact = sol::object();
+  for (const EventHook& h : eventHooks()) this->*h.slot = sol::object();
+  pre_solve_functions = sol::table();
   handles = user_data = shape_handles = joint_handles = sol::table();
   world_handle = draw_handle = sol::object();
   draw = nullptr;
@@ -286,6 +300,7 @@ void Scene::step(double dt) {
     throw SceneError(impl_->name + ": step: " + e.what());
   }
   noteJointBreaks(*impl_);
+  deliverEvents(*impl_);
   if (defined(impl_->on_step)) call(*impl_, impl_->on_step, "OnStep", impl_->world_handle, dt);
 }
 

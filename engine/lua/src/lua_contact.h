@@ -1,0 +1,34 @@
+// Contacts as Lua tables (docs/lua-api.md "Events"): what event hooks, pre_solve functions,
+// body:contacts() and world:contact_events() give, with the names of api::kContactFields.
+#pragma once
+
+#include "bindings.h"
+
+namespace rigidlab::lua {
+
+// A contact in the words of the Lua API: one point (the middle of the manifold's points) and the
+// totals of its impulses.
+struct ContactView {
+  BodyId a, b;
+  ShapeId shape_a, shape_b;
+  Vec2 point = Vec2::Zero(), normal = Vec2::Zero();  // normal: unit, from a to b
+  double approach_speed = 0.0;  // closing speed along the normal [m/s], > 0 approaching
+  double normal_impulse = 0.0, tangent_impulse = 0.0;  // [N·s]
+};
+// An event of the step: the core's values (approach speed at the start of the step).
+ContactView contactView(const World::ContactEvent& e);
+// A current contact (World::contactsOf, the pre-solve callback): the closing speed with the bodies'
+// velocities now, −n · (v_b(p) − v_a(p)); the impulses the last step applied.
+ContactView contactView(const World& world, const ContactInfo& c);
+
+// Pushes {a, b, shape_a, shape_b, point, normal, approach_speed, normal_impulse, tangent_impulse}
+// and, if `kind` is given, kind = "begin" | "end" | "hit". A body removed since is nil; a removed
+// shape's handle says removed.
+void pushContact(lua_State* L, Scene::Impl& scene, const ContactView& c, const char* kind = nullptr);
+const char* contactEventKind(World::ContactEvent::Kind kind);
+
+// body:contacts() and world:contact_events().
+int bodyContactsMethod(lua_State* L);
+int contactEventsMethod(lua_State* L);
+
+}  // namespace rigidlab::lua

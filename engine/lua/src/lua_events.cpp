@@ -1,0 +1,196 @@
+// Events in Lua (lua_events.h): shape event options and fields, pre_solve functions run during the
+// step, and the hook calls made after it.
+#include "lua_events.h"
+
+#include "api_names.h"
+#include "lua_contact.h"
+#include "lua_shape.h"
+#include "rigidlab/error.h"
+#include "rigidlab/lua/scene_text.h"
+
+namespace rigidlab::lua {
+namespace {
+
+bool isFunction(const sol::object& f) { return f.valid() && f.get_type() == sol::type::function; }
+
+// A one_way direction: a finite vector that is not zero (the core normalises it).
+Vec2 oneWay(lua_State* L, std::string_view function, std::string_view subject, const sol::object& v) {
+  const Vec2 n = checkVec(L, function, subject, v);
+  if (!(n.norm() > 0.0))
+    fail(L, function, (subject.empty() ? "" : std::string(subject) + " ") +
+                          "must be a direction {nx, ny} (the side to stand on), got " + formatVec(n));
+  return n;
+}
+
+void requirePreSolveFunction(lua_State* L, std::string_view function, std::string_view subject, const sol::object& v,
+                             bool nil_allowed) {
+  if (v.get_type() == sol::type::function) return;
+  fail(L, function, (subject.empty() ? "" : std::string(subject) + " ") +
+                        "must be a function(contact) that returns false to disable the contact" +
+                        (nil_allowed ? ", or nil" : "") + ", got " + describe(v));
+}
+
+uint64_t keyOf(ShapeId id) { return handleKey(id.index, id.generation); }
+
+// The pre-solve callback of the scene's world: the pre_solve functions of the contact's shapes, in
+// the order a, b, each given the same contact table; the first that returns false disables the
+// contact (and the other is not asked). Runs inside the step, under the step's Lua budget.
+bool runPreSolve(Scene::Impl& s, const ContactInfo& c) {
+  ScriptHost& host = *s.host;
+  lua_State* L = host.L();
+  const Budget::Scope budget(host.budget(), Budget::Kind::Force);
+  bool enabled = true;
+  const auto error = host.run([&] {
+    const int top = lua_gettop(L);
+    pushContact(L, s, contactView(*s.world, c));
+    for (const ShapeId id : {c.shape_a, c.shape_b}) {
+      if (!enabled) break;
+      s.pre_solve_functions.push(L);
+      lua_rawgeti(L, -1, static_cast<lua_Integer>(keyOf(id)));
+      lua_remove(L, -2);
+      if (lua_type(L, -1) != LUA_TFUNCTION) {
+        lua_pop(L, 1);
+        continue;
+      }
+      lua_pushvalue(L, top + 1);
+      ++host.calls;
+      lua_call(L, 1, 1);
+      enabled = !(lua_type(L, -1) == LUA_TBOOLEAN && !lua_toboolean(L, -1));
+      lua_pop(L, 1);
+    }
+    lua_settop(L, top);
+  });
+  if (error) throw ScriptError(host.errorText(*error, "pre_solve"));
+  return enabled;
+}
+
+// Keeps `f` as the pre_solve function of shape `id` (nil: none) and flags the shape for the core.
+void keepPreSolve(lua_State* L, Scene::Impl& scene, ShapeId id, const sol::object& f) {
+  const bool on = f.get_type() == sol::type::function;
+  if (!scene.pre_solve_functions.valid()) {
+    if (!on) return;
+    scene.pre_solve_functions = sol::table(L, sol::create);
+    scene.world->setPreSolve([&scene](const ContactInfo& c) { return runPreSolve(scene, c); });
+  }
+  scene.pre_solve_functions.raw_set(static_cast<lua_Integer>(keyOf(id)), on ? f : sol::make_object(L, sol::lua_nil));
+  scene.world->setShapePreSolve(id, on);
+}
+
+}  // namespace
+
+void readShapeEventOptions(const Options& o, ShapeDef& def) {
+  if (!o.hasAny(api::kShapeEventOptions)) return;
+  def.contact_events = o.boolean("contact_events", false);
+  def.hit_speed = o.nonNegative("hit_speed", def.hit_speed);
+  def.hit_events = o.boolean("hit_events", o.has("hit_speed"));
+  if (o.has("one_way")) def.one_way = oneWay(o.L(), o.function(), "one_way", o.get("one_way"));
+  if (o.has("pre_solve")) {
+    requirePreSolveFunction(o.L(), o.function(), "pre_solve", o.get("pre_solve"), false);
+    def.pre_solve = true;
+  }
+}
+
+void attachShapeEvents(lua_State* L, Scene::Impl& scene, const Options& o, ShapeId id) {
+  if (!o.hasAny(api::kShapeEventOptions)) return;
+  ShapeDef d;
+  readShapeEventOptions(o, d);  // checked already, before the shape was made
+  World& w = *scene.world;
+  w.setShapeEvents(id, d.contact_events, d.hit_events, d.hit_speed);
+  if (d.one_way) w.setShapeOneWay(id, d.one_way);
+  if (o.has("pre_solve")) keepPreSolve(L, scene, id, o.get("pre_solve"));
+}
+
+bool pushShapeEventField(lua_State* L, Scene::Impl& scene, const BodyShape& s, std::string_view k) {
+  if (k == "contact_events") {
+    lua_pushboolean(L, s.contact_events);
+  } else if (k == "hit_events") {
+    lua_pushboolean(L, s.hit_events);
+  } else if (k == "hit_speed") {
+    lua_pushnumber(L, s.hit_speed);
+  } else if (k == "one_way") {
+    if (s.one_way) pushVec(L, *s.one_way);
+    else lua_pushnil(L);
+  } else if (k == "pre_solve") {
+    if (scene.pre_solve_functions.valid()) scene.pre_solve_functions.raw_get<sol::object>(static_cast<lua_Integer>(keyOf(s.id))).push(L);
+    else lua_pushnil(L);
+  } else {
+    return false;
+  }
+  return true;
+}
+
+bool setShapeEventField(lua_State* L, Scene::Impl& scene, ShapeId id, std::string_view function, std::string_view k,
+                        const sol::object& value) {
+  World& w = *scene.world;
+  const BodyShape& s = w.shape(id);
+  try {
+    if (k == "contact_events") {
+      w.setShapeEvents(id, checkBool(L, function, "", value), s.hit_events, s.hit_speed);
+    } else if (k == "hit_events") {
+      w.setShapeEvents(id, s.contact_events, checkBool(L, function, "", value), s.hit_speed);
+    } else if (k == "hit_speed") {
+      w.setShapeEvents(id, s.contact_events, s.hit_events, checkNumber(L, function, "", value, Range::NonNegative));
+    } else if (k == "one_way") {
+      w.setShapeOneWay(id, isMissing(value) ? std::nullopt : std::optional(oneWay(L, function, "", value)));
+    } else if (k == "pre_solve") {
+      if (!isMissing(value)) requirePreSolveFunction(L, function, "", value, true);
+      keepPreSolve(L, scene, id, value);
+    } else {
+      return false;
+    }
+  } catch (const InputError& e) {
+    failCore(L, function, e);
+  }
+  return true;
+}
+
+void forgetShapeEvents(Scene::Impl& scene, ShapeId id) {
+  if (scene.pre_solve_functions.valid()) scene.pre_solve_functions.raw_set(static_cast<lua_Integer>(keyOf(id)), sol::lua_nil);
+}
+
+const std::vector<EventHook>& eventHooks() {
+  static const std::vector<EventHook> hooks = {{"OnContactBegin", &Scene::Impl::on_contact_begin},
+                                               {"OnContactEnd", &Scene::Impl::on_contact_end},
+                                               {"OnHit", &Scene::Impl::on_hit},
+                                               {"OnSensorBegin", &Scene::Impl::on_sensor_begin},
+                                               {"OnSensorEnd", &Scene::Impl::on_sensor_end},
+                                               {"OnJointBreak", &Scene::Impl::on_joint_break}};
+  return hooks;
+}
+
+std::vector<EventCall> eventCalls(Scene::Impl& s) {
+  std::vector<EventCall> calls;
+  const bool contacts = isFunction(s.on_contact_begin) || isFunction(s.on_contact_end) || isFunction(s.on_hit);
+  const bool sensors = isFunction(s.on_sensor_begin) || isFunction(s.on_sensor_end);
+  const bool joints = isFunction(s.on_joint_break);
+  if (!contacts && !sensors && !joints) return calls;
+  lua_State* L = s.host->L();
+  const World& w = *s.world;
+  using Kind = World::ContactEvent::Kind;
+  if (contacts) {
+    for (const World::ContactEvent& e : w.contactEvents()) {
+      const EventHook& h = eventHooks()[e.kind == Kind::Begin ? 0 : e.kind == Kind::End ? 1 : 2];
+      if (!isFunction(s.*h.slot)) continue;
+      pushContact(L, s, contactView(e));
+      calls.push_back({&(s.*h.slot), h.name, sol::stack::pop<sol::object>(L), sol::object()});
+    }
+  }
+  if (sensors) {
+    for (const World::SensorEvent& e : w.sensorEvents()) {
+      const EventHook& h = eventHooks()[e.begin ? 3 : 4];
+      if (!isFunction(s.*h.slot)) continue;
+      calls.push_back({&(s.*h.slot), h.name, shapeHandle(L, s, e.sensor), shapeHandle(L, s, e.visitor)});
+    }
+  }
+  if (joints) {
+    // The core has removed a broken joint by now: its handle is made from what the break kept.
+    for (const World::JointBreakInfo& b : w.jointBreaks())
+      calls.push_back({&s.on_joint_break, "OnJointBreak",
+                       cachedHandle(L, s.joint_handles, handleKey(b.id.index, b.id.generation),
+                                    LuaJoint{&s, b.id, b.def.type}),
+                       sol::object()});
+  }
+  return calls;
+}
+
+}  // namespace rigidlab::lua

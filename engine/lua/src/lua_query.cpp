@@ -1,0 +1,174 @@
+// The world's queries in Lua (lua_query.h). Every one takes a table of options with the filter
+// category (default 1), mask (default all) and sensors (default false: sensors are not found), as
+// World's QueryFilter has them; explode takes category and mask.
+//
+//   ray_cast{from, to}         nil or {body, shape, point, normal, fraction}: the closest hit
+//   ray_cast_all{from, to}     every hit, by fraction (a shape once)
+//   query_box{lower, upper}    the shapes overlapping the box (shapes, not bodies: a compound
+//                              body's pieces are told apart; shape.body is the body)
+//   query_point{point}         the shapes containing the point
+//   overlap{shape, position, angle}     the shapes overlapping a circle, box, polygon or capsule
+//   shape_cast{shape, from, to, angle}  nil or the first hit of that shape moved from → to:
+//                              fraction is the time of impact along the way
+//   explode{position, radius, falloff, impulse}   the bodies pushed, each once
+// `shape` is a table like body:add_shape's: {shape = "circle", radius = 0.5}, {shape = "box",
+// width =, height =}, {shape = "polygon", vertices =}, {shape = "capsule", a =, b =, radius =}.
+#include "lua_query.h"
+
+#include "api_names.h"
+#include "lua_args.h"
+#include "lua_body_args.h"
+#include "lua_contact.h"
+#include "lua_shape.h"
+#include "rigidlab/error.h"
+#include "rigidlab/lua/scene_text.h"
+
+namespace rigidlab::lua {
+namespace {
+
+using namespace api;
+
+QueryFilter readQueryFilter(const Options& o) {
+  QueryFilter f;
+  f.category = o.bits("category", f.category);
+  f.mask = o.bits("mask", f.mask);
+  f.sensors = o.boolean("sensors", f.sensors);
+  return f;
+}
+
+// The options of `function`: its own and the filter's.
+Options queryOptions(lua_State* L, std::string_view function, const std::vector<std::string_view>& own) {
+  return Options(L, function, sol::stack_object(L, 2), joined({&own, &kQueryFilterOptions}));
+}
+
+void pushHit(lua_State* L, Scene::Impl& scene, const RayHit& h) {
+  lua_createtable(L, 0, 5);
+  bodyHandle(L, scene, h.body).push(L);
+  lua_setfield(L, -2, "body");
+  shapeHandle(L, scene, h.shape).push(L);
+  lua_setfield(L, -2, "shape");
+  pushVec(L, h.point);
+  lua_setfield(L, -2, "point");
+  pushVec(L, h.normal);
+  lua_setfield(L, -2, "normal");
+  lua_pushnumber(L, h.fraction);
+  lua_setfield(L, -2, "fraction");
+}
+
+int pushOptionalHit(lua_State* L, Scene::Impl& scene, const std::optional<RayHit>& h) {
+  if (!h) return 0;  // nil
+  pushHit(L, scene, *h);
+  return 1;
+}
+
+int pushShapes(lua_State* L, Scene::Impl& scene, const std::vector<ShapeId>& shapes) {
+  pushHandles(L, shapes, [&](ShapeId id) { return shapeHandle(L, scene, id); });
+  return 1;
+}
+
+// The `shape` option of overlap and shape_cast, in world coordinates of nothing yet (body
+// coordinates of the query's placement). Messages read "overlap: shape: radius must be > 0, got -1".
+Shape queryShape(const Options& outer) {
+  const std::string function = outer.function() + ": shape";
+  const sol::object value = outer.get("shape");
+  if (value.get_type() != sol::type::table)
+    outer.fail("shape", "must be a table like body:add_shape's, e.g. {shape = \"circle\", radius = 0.5}, got " +
+                            describe(value));
+  const Options o(outer.L(), function, value, kQueryShapeOptions);
+  const ShapeKind kind = shapeKind(o, "shape");
+  if (kind == ShapeKind::Segment)
+    o.fail("shape", "\"segment\" cannot be used here: queries take a circle, box, polygon or capsule");
+  refuseOtherGeometry(o, kind, "");
+  return readGeometry(o, kind);
+}
+
+int rayCast(lua_State* L) {
+  Scene::Impl& scene = editedWorld(L, "ray_cast");
+  const Options o = queryOptions(L, "ray_cast", kRayCastOptions);
+  const Vec2 from = o.vec("from"), to = o.vec("to");
+  return pushOptionalHit(L, scene, scene.world->rayCast(from, to, readQueryFilter(o)));
+}
+
+int rayCastAll(lua_State* L) {
+  Scene::Impl& scene = editedWorld(L, "ray_cast_all");
+  const Options o = queryOptions(L, "ray_cast_all", kRayCastOptions);
+  const Vec2 from = o.vec("from"), to = o.vec("to");
+  const std::vector<RayHit> hits = scene.world->rayCastAll(from, to, readQueryFilter(o));
+  lua_createtable(L, static_cast<int>(hits.size()), 0);
+  for (size_t i = 0; i < hits.size(); ++i) {
+    pushHit(L, scene, hits[i]);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  return 1;
+}
+
+int queryBox(lua_State* L) {
+  Scene::Impl& scene = editedWorld(L, "query_box");
+  const Options o = queryOptions(L, "query_box", kQueryBoxOptions);
+  const Aabb box{o.vec("lower"), o.vec("upper")};
+  if (box.upper.x() < box.lower.x() || box.upper.y() < box.lower.y())
+    o.fail("upper", "must be above and right of lower (upper >= lower in x and y), got lower " +
+                        formatVec(box.lower) + " and upper " + formatVec(box.upper));
+  return pushShapes(L, scene, scene.world->queryBox(box, readQueryFilter(o)));
+}
+
+int queryPoint(lua_State* L) {
+  Scene::Impl& scene = editedWorld(L, "query_point");
+  const Options o = queryOptions(L, "query_point", kQueryPointOptions);
+  return pushShapes(L, scene, scene.world->queryPoint(o.vec("point"), readQueryFilter(o)));
+}
+
+int overlap(lua_State* L) {
+  Scene::Impl& scene = editedWorld(L, "overlap");
+  const Options o = queryOptions(L, "overlap", kOverlapOptions);
+  const Shape shape = queryShape(o);
+  const Transform xf{o.vec("position", Vec2::Zero()), Rot::fromAngle(o.number("angle", 0.0))};
+  return pushShapes(L, scene, scene.world->overlap(shape, xf, readQueryFilter(o)));
+}
+
+int shapeCast(lua_State* L) {
+  Scene::Impl& scene = editedWorld(L, "shape_cast");
+  const Options o = queryOptions(L, "shape_cast", kShapeCastOptions);
+  const Shape shape = queryShape(o);
+  const Vec2 from = o.vec("from"), to = o.vec("to");
+  const Transform xf{from, Rot::fromAngle(o.number("angle", 0.0))};
+  std::optional<RayHit> hit;
+  try {
+    hit = scene.world->shapeCast(shape, xf, to - from, readQueryFilter(o));
+  } catch (const InputError& e) {
+    failCore(L, "shape_cast", e);
+  }
+  return pushOptionalHit(L, scene, hit);
+}
+
+int explode(lua_State* L) {
+  Scene::Impl& scene = editedWorld(L, "explode");
+  const Options o(L, "explode", sol::stack_object(L, 2), kExplodeOptions);
+  ExplosionDef e;
+  e.position = o.vec("position");
+  e.radius = o.positive("radius", e.radius);
+  e.falloff = o.nonNegative("falloff", e.falloff);
+  e.impulse = o.nonNegative("impulse", e.impulse);
+  e.filter.category = o.bits("category", e.filter.category);
+  e.filter.mask = o.bits("mask", e.filter.mask);
+  std::vector<BodyId> pushed;
+  try {
+    pushed = scene.world->explode(e);
+  } catch (const InputError& err) {
+    failCore(L, "explode", err);
+  }
+  pushHandles(L, pushed, [&](BodyId id) { return bodyHandle(L, scene, id); });
+  return 1;
+}
+
+}  // namespace
+
+lua_CFunction queryWorldMethod(std::string_view name) {
+  static const NamedFunction kMethods[] = {
+      {"ray_cast", guarded<rayCast>},     {"ray_cast_all", guarded<rayCastAll>}, {"query_box", guarded<queryBox>},
+      {"query_point", guarded<queryPoint>}, {"overlap", guarded<overlap>},     {"shape_cast", guarded<shapeCast>},
+      {"explode", guarded<explode>},      {"contact_events", contactEventsMethod}};
+  return lookUp(kMethods, name);
+}
+
+}  // namespace rigidlab::lua
