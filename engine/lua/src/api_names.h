@@ -116,4 +116,15 @@ inline std::vector<std::string_view> jointOwnFields(const std::vector<std::strin
   return own;
 }
 
+// --- sandbox mod hooks: OnMouse's event, scene.keys and scene.controls, world.controls, draw.
+inline const std::vector<std::string_view> kSceneModOptions = {"keys", "controls"};  // besides kSceneOptions
+inline const std::vector<std::string_view> kWorldModFields = {"controls"};           // besides kWorldFields
+inline const std::vector<std::string_view> kControlOptions = {"name", "kind", "min", "max", "value"};
+inline const std::vector<std::string_view> kControlKinds = {"slider", "button"};
+inline const std::vector<std::string_view> kMouseEventFields = {"kind", "button", "position", "screen",
+                                                                "shift", "ctrl", "alt", "wheel"};
+inline const std::vector<std::string_view> kMouseEventKinds = {"press", "release", "move", "wheel"};
+inline const std::vector<std::string_view> kMouseButtons = {"left", "right", "middle"};
+inline const std::vector<std::string_view> kDrawFunctions = {"line", "circle", "text", "polygon", "capsule", "screen"};
+
 }  // namespace rigidlab::lua::api
