@@ -60,6 +60,8 @@ const Golden kGolden[] = {
     {"tests/scenes/lua_spring_twin.lua", "ad804d90435d3a9c"},
     {"tests/scenes/regression_far_body.lua", "8b5d76f4f74135f6"},
     {"tests/scenes/vec2_api.lua", "31dd1a62c493ba98"},
+    // sandbox mod hooks: bodies spawned by the scene's own OnMouse clicks
+    {"scripts/scenes/mouse_spawn.lua", "62aee1d8f626892d"},
 };
 // clang-format on
 

@@ -89,23 +89,21 @@ TEST_CASE("mod hooks: OnMouse gets kind, button, position, screen, modifiers and
 }
 
 TEST_CASE("mod hooks: OnMouse must answer true, false or nothing; a scene without it consumes nothing") {
-  auto scene = load("function PopulateWorld(world) end\nfunction OnMouse(world, e) return 1 end");
-  try {
-    scene->onMouse(MouseEvent{});
-    FAIL("no error");
-  } catch (const SceneError& e) {
-    CHECK(std::string(e.what()) == "mod.lua: OnMouse: must return true (the event is consumed), false or nothing, got 1");
-  }
+  const auto mouseError = [](const std::string& hook) {
+    try {
+      load("function PopulateWorld(world) end\n" + hook)->onMouse(MouseEvent{});
+    } catch (const SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  CHECK(mouseError("function OnMouse(world, e) return 1 end") ==
+        "mod.lua: OnMouse: must return true (the event is consumed), false or nothing, got 1");
+  CHECK(mouseError("function OnMouse(world, e)\n  error('boom')\nend") == "mod.lua:3: OnMouse: boom");
+  CHECK(mouseError("OnMouse = 5") == "mod.lua: OnMouse must be a function, got 5");
   auto plain = load("function PopulateWorld(world) end");
   CHECK_FALSE(plain->hasOnMouse());
   CHECK_FALSE(plain->onMouse(press(MouseEvent::Button::Left, Vec2(0, 0), Vec2(0, 0))));
-  auto failing = load("function PopulateWorld(world) end\nfunction OnMouse(world, e)\n  error('boom')\nend");
-  try {
-    failing->onMouse(MouseEvent{});
-    FAIL("no error");
-  } catch (const SceneError& e) {
-    CHECK(std::string(e.what()) == "mod.lua:3: OnMouse: boom");
-  }
 }
 
 namespace {
@@ -270,22 +268,24 @@ TEST_CASE("mod hooks: world.controls and scene.controls mistakes name the field 
   CHECK(runError("local x = world.controls.cuont") == "mod.lua:19: world.controls: has no control 'cuont' (did you mean 'count'?)");
   CHECK(runError("world.controls = {}") == "mod.lua:19: world.controls: is read-only");
 
-  const auto settingsError = [](const std::string& controls) {
-    return errorOf("\nscene = {\n  controls = " + controls + ",\n}\nfunction PopulateWorld(world) end");
+  // scene.controls mistakes: reported at the scene table's line.
+  const std::pair<const char*, const char*> cases[] = {
+      {"{{name = 'wind', min = 5, max = 5}}", "scene.controls[1]: max must be greater than min (5), got 5"},
+      {"{{name = 'a', kind = 'button'}, {name = 'wind', min = 0, max = 1, value = 2}}",
+       "scene.controls[2]: value must be between min and max (0 and 1), got 2"},
+      {"{{name = 'go', kind = 'knob'}}", "scene.controls[1]: kind must be \"slider\" or \"button\", got \"knob\""},
+      {"{{name = 'go', kind = 'button', max = 3}}", "scene.controls[1]: max is for sliders; a button has none, got 3"},
+      {"{{name = 'wind speed', min = 0, max = 1}}",
+       "scene.controls[1]: name must be a name of letters, digits and underscores (world.controls.<name>), got \"wind speed\""},
+      {"{{name = 'a', kind = 'button'}, {name = 'a', kind = 'button'}}",
+       "scene.controls[2]: name 'a' is used by an earlier control"},
+      {"{{name = 'a', min = 0, max = 1, vaule = 1}}", "scene.controls[1]: unknown option 'vaule' (did you mean 'value'?)"},
+      {"{{name = 'wind', max = 1}}", "scene.controls[1]: min is required"},
+      {"'wind'", "scene: controls must be a list, e.g. {{name = \"wind\", min = 0, max = 20, value = 5}}, got \"wind\""},
   };
-  CHECK(settingsError("{{name = 'wind', min = 5, max = 5}}") ==
-        "mod.lua:2: scene.controls[1]: max must be greater than min (5), got 5");
-  CHECK(settingsError("{{name = 'a', kind = 'button'}, {name = 'wind', min = 0, max = 1, value = 2}}") ==
-        "mod.lua:2: scene.controls[2]: value must be between min and max (0 and 1), got 2");
-  CHECK(settingsError("{{name = 'go', kind = 'knob'}}") ==
-        "mod.lua:2: scene.controls[1]: kind must be \"slider\" or \"button\", got \"knob\"");
-  CHECK(settingsError("{{name = 'go', kind = 'button', max = 3}}") ==
-        "mod.lua:2: scene.controls[1]: max is for sliders; a button has none, got 3");
-  CHECK(settingsError("{{name = 'wind speed', min = 0, max = 1}}") ==
-        "mod.lua:2: scene.controls[1]: name must be a name of letters, digits and underscores (world.controls.<name>), got \"wind speed\"");
-  CHECK(settingsError("{{name = 'a', kind = 'button'}, {name = 'a', kind = 'button'}}") ==
-        "mod.lua:2: scene.controls[2]: name 'a' is used by an earlier control");
-  CHECK(settingsError("{{name = 'a', min = 0, max = 1, vaule = 1}}") ==
-        "mod.lua:2: scene.controls[1]: unknown option 'vaule' (did you mean 'value'?)");
-  CHECK(settingsError("{{name = 'wind', max = 1}}") == "mod.lua:2: scene.controls[1]: min is required");
+  for (const auto& [controls, message] : cases) {
+    CAPTURE(controls);
+    CHECK(errorOf("\nscene = {\n  controls = " + std::string(controls) + ",\n}\nfunction PopulateWorld(world) end") ==
+          "mod.lua:2: " + std::string(message));
+  }
 }
