@@ -228,3 +228,27 @@ TEST_CASE("mod input: picking goes through the world's queries: topmost body, se
   CHECK_FALSE(pickBody(w, Vec2(2, -2.8), 0.1));             // 20 cm: too far
   CHECK_FALSE(pickBody(w, Vec2(3, 3), 0.1));
 }
+
+TEST_CASE("mod input: a failing OnMouse pauses with its error, and gets no more events until resumed") {
+  TempDir dir;
+  Session s;
+  startOn(s, dir.path / "failing.lua", R"(
+scene = {gravity = {0, 0}, camera = {center = {0, 0}, height = 10}}
+function PopulateWorld(world) end
+function OnMouse(world, e)
+  if e.kind ~= "press" then return false end
+  world:add_circle{radius = 0.1, position = e.position}
+  error("broken tool")
+end
+)");
+  REQUIRE(s.scene_loaded);
+  click(s, Vec2(1, 1));
+  CHECK(s.paused);
+  CHECK(s.run_error.find("failing.lua:7: OnMouse: broken tool") != std::string::npos);
+  CHECK(s.world().bodyCount() == 1);
+  click(s, Vec2(2, 1));  // not offered: the select tool's (nothing there)
+  CHECK(s.world().bodyCount() == 1);
+  setPaused(s, false);
+  click(s, Vec2(3, 1));
+  CHECK(s.world().bodyCount() == 2);
+}

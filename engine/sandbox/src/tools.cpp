@@ -291,9 +291,11 @@ bool claimedByScene(const Session& s, const SDL_KeyboardEvent& key) {
   return std::find(keys.begin(), keys.end(), keyName(key.keysym.sym)) != keys.end();
 }
 
-// Offers a mouse event to the scene's OnMouse; true if the scene consumed it.
+// Offers a mouse event to the scene's OnMouse; true if the scene consumed it. Not while a script
+// error is shown (until Space resumes or the scene reloads): a failing OnMouse would otherwise
+// fail again at every move of the cursor.
 bool offerToScene(Session& s, const SDL_Event& e) {
-  if (!s.scene->hasOnMouse()) return false;
+  if (!s.scene->hasOnMouse() || !s.run_error.empty()) return false;
   const auto event = sceneMouseEvent(e, s.camera, s.tools.mouse_px, SDL_GetModState());
   return event && runSceneHook(s, [&] { return s.scene->onMouse(*event); });
 }
