@@ -460,6 +460,7 @@ function ForceHandle:remove() end
 ---@field time number simulated time, s (read only)
 ---@field step_count integer steps taken (read only)
 ---@field title string the scene's title (read only)
+---@field controls table<string, number> the scene's sliders by name (scene.controls): what the sandbox's slider says, the default headless; `world.controls.size = 0.5` sets one within its range; a button has no value (OnControl)
 local World = {}
 
 ---A body without shapes (add them with body:add_shape).
@@ -573,8 +574,12 @@ function World:kinetic_energy() end
 ---@return number
 function World:potential_energy() end
 
----The argument of OnDraw: overlays in world coordinates. Colors are {r, g, b [, a]} in 0..1.
+---The argument of OnDraw: overlays in world coordinates. Colors are {r, g, b [, a]} in 0..1; `color`
+---(the outline) defaults to white, a shape is filled only when `fill` is given. `draw.screen` has the
+---same functions in pixels from the window's top-left corner, y down (a HUD): positions and radii in
+---pixels. Per frame at most 20 000 lines, 2 000 circles, 2 000 polygons and capsules together, 500 texts.
 ---@class rigidlab.Draw
+---@field screen rigidlab.Draw the same functions in window pixels, y down
 local Draw = {}
 
 ---@param a rigidlab.VecLike
@@ -585,12 +590,45 @@ function Draw:line(a, b, color) end
 ---@param center rigidlab.VecLike
 ---@param radius number
 ---@param color? number[]
-function Draw:circle(center, radius, color) end
+---@param fill? number[]
+function Draw:circle(center, radius, color, fill) end
 
 ---@param position rigidlab.VecLike
 ---@param text string
 ---@param color? number[]
 function Draw:text(position, text, color) end
+
+---3 to 256 points in order; a concave outline is filled too, one that crosses itself is drawn as its outline.
+---@param points rigidlab.VecLike[]
+---@param color? number[]
+---@param fill? number[]
+function Draw:polygon(points, color, fill) end
+
+---@param a rigidlab.VecLike
+---@param b rigidlab.VecLike
+---@param radius number
+---@param color? number[]
+---@param fill? number[]
+function Draw:capsule(a, b, radius, color, fill) end
+
+---A mouse event in the sandbox, as OnMouse receives it.
+---@class rigidlab.MouseEvent
+---@field kind "press"|"release"|"move"|"wheel"
+---@field button? "left"|"right"|"middle" for a press or release; nil for a move or wheel (other buttons are not passed)
+---@field position rigidlab.Vec2 the cursor in world coordinates, m
+---@field screen rigidlab.Vec2 the cursor in pixels from the window's top-left corner, y down
+---@field shift boolean
+---@field ctrl boolean
+---@field alt boolean
+---@field wheel? number for "wheel" only: notches turned, > 0 away from the user
+
+---A slider or a button of the sandbox's Controls panel (scene.controls).
+---@class rigidlab.ControlOptions
+---@field name string required; letters, digits and underscores: world.controls.<name>
+---@field kind? "slider"|"button" default "slider"
+---@field min? number a slider's lowest value (required for a slider)
+---@field max? number a slider's highest value, > min (required for a slider)
+---@field value? number a slider's starting value, default min; also the value headless
 
 ---Scene settings; every field is optional.
 ---@class rigidlab.SceneSettings
@@ -606,6 +644,8 @@ function Draw:text(position, text, color) end
 ---@field camera? {center?: rigidlab.VecLike, height?: number} initial sandbox view, metres
 ---@field memory_limit? number MiB the scene's Lua may allocate, at most the host's cap (256 by default)
 ---@field expect_incidents? boolean default false: bodies frozen by the NaN firewall or a non-finite energy are expected (a headless run then still exits with 0, not 3)
+---@field keys? string[] keys the scene takes from the sandbox's bindings while it runs (OnKey gets them), e.g. {"space", "r"}
+---@field controls? rigidlab.ControlOptions[] sliders and buttons in the sandbox's Controls panel; kept across hot reloads; headless, sliders keep their `value`
 
 ---@type rigidlab.SceneSettings
 scene = {}
@@ -623,14 +663,27 @@ function OnStep(world, dt) end
 ---@param world rigidlab.World
 function Check(world) end
 
----Optional: a key pressed in the sandbox ("space", "a", ...).
+---Optional: a key pressed in the sandbox that it does not bind ("a", "b", ...), or one of scene.keys.
 ---@param world rigidlab.World
 ---@param key string
 function OnKey(world, key) end
 
 ---Optional: every frame in the sandbox.
 ---@param draw rigidlab.Draw
-function OnDraw(draw) end
+---@param world rigidlab.World
+function OnDraw(draw, world) end
+
+---Optional: a mouse event in the sandbox (between steps: the world may be edited). Return true to
+---consume it: the sandbox's tool then does not act on it.
+---@param world rigidlab.World
+---@param event rigidlab.MouseEvent
+---@return boolean|nil
+function OnMouse(world, event) end
+
+---Optional: a button of scene.controls was pressed, or a slider moved, in the sandbox (between steps).
+---@param world rigidlab.World
+---@param name string
+function OnControl(world, name) end
 
 ---A body's exact state at a time, for Exact(t).
 ---@class rigidlab.ExactState

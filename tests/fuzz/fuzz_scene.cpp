@@ -33,6 +33,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     for (int i = 0; i < 10; ++i) scene->step();
     scene->runCheck();
     scene->onKey("space");
+    scene->onMouse(rigidlab::lua::MouseEvent{});
     NullDraw draw;
     scene->onDraw(draw);
     scene->exact(0.5);

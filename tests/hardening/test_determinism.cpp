@@ -67,6 +67,8 @@ const Golden kGolden[] = {
     {"scripts/scenes/vase.lua", "d47265374f5438ff"},
     {"tests/scenes/lua_events.lua", "fa310c703abd3af2"},
     {"tests/scenes/lua_queries.lua", "b9f44982e9d25a81"},
+    // sandbox mod hooks: bodies spawned by the scene's own OnMouse clicks
+    {"scripts/scenes/mouse_spawn.lua", "62aee1d8f626892d"},
 };
 // clang-format on
 

@@ -61,7 +61,7 @@ TEST_CASE("the editor annotations list exactly the API's names") {
   const auto classes = annotated();
   CHECK(classes.at("Body") == names({&api::kBodyReadable}));
   CHECK(classes.at("Shape") == names({&api::kShapeReadable}));
-  CHECK(classes.at("World") == names({&api::kWorldFields, &api::kWorldMethods}));
+  CHECK(classes.at("World") == names({&api::kWorldFields, &api::kWorldMethods, &api::kWorldModFields}));
   CHECK(classes.at("BodyOptions") == names({&api::kBodyOptions}));
   CHECK(classes.at("ShapeOptions") == names({&api::kShapeOptions}));
   CHECK(classes.at("ShapedBodyOptions") == names({&api::kShapedBodyOptions}));
@@ -76,7 +76,7 @@ TEST_CASE("the editor annotations list exactly the API's names") {
   CHECK(classes.at("SpringOptions") == names({&api::kSpringOptions}));
   CHECK(classes.at("DamperOptions") == names({&api::kDamperOptions}));
   CHECK(classes.at("ForceOptions") == names({&api::kForceOptions}));
-  CHECK(classes.at("SceneSettings") == names({&api::kSceneOptions}));
+  CHECK(classes.at("SceneSettings") == names({&api::kSceneOptions, &api::kSceneModOptions}));
   CHECK(classes.at("JointOptions") == names({&api::kJointOptions}));
   CHECK(classes.at("RevoluteOptions") == names({&api::kRevoluteOptions}));
   CHECK(classes.at("PrismaticOptions") == names({&api::kPrismaticOptions}));
@@ -87,7 +87,9 @@ TEST_CASE("the editor annotations list exactly the API's names") {
   CHECK(classes.at("FrictionJointOptions") == names({&api::kFrictionJointOptions}));
   CHECK(classes.at("PulleyOptions") == names({&api::kPulleyOptions}));
   CHECK(classes.at("GearOptions") == names({&api::kGearOptions}));
-  CHECK(classes.at("Draw") == std::set<std::string>{"line", "circle", "text"});
+  CHECK(classes.at("Draw") == names({&api::kDrawFunctions}));
+  CHECK(classes.at("MouseEvent") == names({&api::kMouseEventFields}));
+  CHECK(classes.at("ControlOptions") == names({&api::kControlOptions}));
   CHECK(classes.at("ExactState") == std::set<std::string>{"position", "velocity", "angle", "angular_velocity"});
   CHECK(classes.at("BodyState") ==
         std::set<std::string>{"position", "velocity", "center", "angle", "angular_velocity", "mass", "inertia", "time"});

@@ -12,25 +12,15 @@
 #include <thread>
 
 #include "file_watcher.h"
+#include "temp_dir.h"
 
 using namespace rigidlab::sandbox;
 namespace fs = std::filesystem;
+using rigidlab::test_support::TempDir;
 using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
 
 namespace {
-
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    char name[] = "/tmp/rigidlab-watch-XXXXXX";
-    path = ::mkdtemp(name);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
 
 void write(const fs::path& f, const std::string& text) {
   std::ofstream out(f, std::ios::binary | std::ios::trunc);

@@ -9,27 +9,13 @@
 #include "rigidlab/lua/scene.h"
 #include "rigidlab/lua/scene_writer.h"
 #include "saved_worlds.h"
+#include "temp_dir.h"
 
 using namespace rigidlab;
 using namespace rigidlab::lua;
 using namespace rigidlab::sandbox_test;
 namespace fs = std::filesystem;
-
-namespace {
-
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    char name[] = "/tmp/rigidlab-saved-lua-XXXXXX";
-    path = ::mkdtemp(name);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
-
-}  // namespace
+using rigidlab::test_support::TempDir;
 
 TEST_CASE("saved world through the Lua bindings: every kind, saved after running, opens as the same world") {
   World w = everyKindWorld();

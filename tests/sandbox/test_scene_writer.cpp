@@ -16,24 +16,14 @@
 #include "rigidlab/lua/scene_writer.h"
 #include "saved_worlds.h"
 #include "scene_api_double.h"
+#include "temp_dir.h"
 
 using namespace rigidlab;
 using namespace rigidlab::lua;
 namespace fs = std::filesystem;
+using rigidlab::test_support::TempDir;
 
 namespace {
-
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    char name[] = "/tmp/rigidlab-save-XXXXXX";
-    path = ::mkdtemp(name);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
 
 std::string readFile(const fs::path& f) {
   std::ifstream in(f, std::ios::binary);

@@ -8,35 +8,16 @@
 #include <thread>
 
 #include "session.h"
+#include "session_helpers.h"
 #include "tools.h"
 
 using namespace rigidlab;
 using namespace rigidlab::sandbox;
+using namespace rigidlab::sandbox::testing;
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
 namespace {
-
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    char name[] = "/tmp/rigidlab-session-XXXXXX";
-    path = ::mkdtemp(name);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
-
-void write(const fs::path& f, const std::string& text) {
-  const fs::path tmp = f.string() + ".new";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-  }
-  fs::rename(tmp, f);  // as an editor that saves atomically
-}
 
 const char* kBallScene = R"(
 scene = {title = "ball", gravity = {0, 0}, camera = {center = {1, 2}, height = 10}}
@@ -45,47 +26,6 @@ function PopulateWorld(world)
   world:add_circle{radius = 0.5, position = {0, 0}, velocity = {1, 0}, name = "ball"}
 end
 )";
-
-// Polls the session like the frame loop until `done` or the timeout.
-template <typename Done>
-bool pump(Session& s, Done done, std::chrono::milliseconds timeout = 2000ms) {
-  const auto end = std::chrono::steady_clock::now() + timeout;
-  while (std::chrono::steady_clock::now() < end) {
-    updateHotReload(s);
-    if (done()) return true;
-    std::this_thread::sleep_for(5ms);
-  }
-  return false;
-}
-
-SDL_Event mouse(Uint32 type, Vec2 px, Uint8 button = SDL_BUTTON_LEFT) {
-  SDL_Event e{};
-  e.type = type;
-  if (type == SDL_MOUSEMOTION) {
-    e.motion.x = static_cast<Sint32>(px.x());
-    e.motion.y = static_cast<Sint32>(px.y());
-  } else {
-    e.button.button = button;
-    e.button.x = static_cast<Sint32>(px.x());
-    e.button.y = static_cast<Sint32>(px.y());
-  }
-  return e;
-}
-
-SDL_Event key(SDL_Keycode k, Uint16 mod = 0) {
-  SDL_Event e{};
-  e.type = SDL_KEYDOWN;
-  e.key.keysym.sym = k;
-  e.key.keysym.mod = mod;
-  return e;
-}
-
-void click(Session& s, Vec2 world_point) {
-  const Vec2 px = s.camera.worldToScreen(world_point);
-  handleEvent(s, mouse(SDL_MOUSEMOTION, px), {});
-  handleEvent(s, mouse(SDL_MOUSEBUTTONDOWN, px), {});
-  handleEvent(s, mouse(SDL_MOUSEBUTTONUP, px), {});
-}
 
 Vec2 position(const World& w, const char* name) { return w.body(*w.findBody(name)).xf.p; }
 

@@ -139,5 +139,15 @@ inline const std::vector<std::string_view> kShapeCastOptions = {"shape", "from",
 // The shape of overlap{} and shape_cast{}: add_shape's kind and geometry.
 inline const std::vector<std::string_view> kQueryShapeOptions = {"shape", "radius", "width", "height", "vertices", "a", "b"};
 inline const std::vector<std::string_view> kExplodeOptions = {"position", "radius", "falloff", "impulse", "category", "mask"};
+// --- sandbox mod hooks: OnMouse's event, scene.keys and scene.controls, world.controls, draw.
+inline const std::vector<std::string_view> kSceneModOptions = {"keys", "controls"};  // besides kSceneOptions
+inline const std::vector<std::string_view> kWorldModFields = {"controls"};           // besides kWorldFields
+inline const std::vector<std::string_view> kControlOptions = {"name", "kind", "min", "max", "value"};
+inline const std::vector<std::string_view> kControlKinds = {"slider", "button"};
+inline const std::vector<std::string_view> kMouseEventFields = {"kind", "button", "position", "screen",
+                                                                "shift", "ctrl", "alt", "wheel"};
+inline const std::vector<std::string_view> kMouseEventKinds = {"press", "release", "move", "wheel"};
+inline const std::vector<std::string_view> kMouseButtons = {"left", "right", "middle"};
+inline const std::vector<std::string_view> kDrawFunctions = {"line", "circle", "text", "polygon", "capsule", "screen"};
 
 }  // namespace rigidlab::lua::api

@@ -46,6 +46,10 @@ struct Scene::Impl {
   // key → function), made on first use, so a scene without them holds nothing for events.
   sol::object on_contact_begin, on_contact_end, on_hit, on_sensor_begin, on_sensor_end, on_joint_break;
   sol::table pre_solve_functions;
+
+  // --- sandbox mod hooks (scene_controls.cpp, lua_mouse_event.cpp)
+  sol::object on_mouse, on_control;  // OnMouse, OnControl, or nil
+  std::vector<double> control_values;  // current values of settings.controls (sliders; 0 for buttons)
 };
 
 // Handles are full userdata holding these plain structs, with metatables of the host's own
@@ -99,7 +103,13 @@ struct LuaDraw {
   OverlayDraw* target = nullptr;
   Scene::DrawReport report;
   size_t text_bytes = 0;
+  // draw.screen: a second handle that draws through this one (its target and allowance) in pixels.
+  LuaDraw* main = nullptr;       // set in the screen handle: the draw object it belongs to
+  int screen_ref = LUA_NOREF;    // set in the main handle: registry reference of the screen handle
 };
+
+// Pushes the `draw` handle of OnDraw (made with its draw.screen) and sets `main` to it.
+void pushDrawHandles(lua_State* L, LuaDraw*& main);
 
 // The handle of type T at `index`, or nullptr if the value is something else.
 template <typename T>
@@ -218,6 +228,18 @@ void noteJointBreaks(Scene::Impl& scene);  // after every step of the scene's wo
 lua_CFunction bodyWorldMethod(std::string_view name);
 
 bool isVec2Table(lua_State* L, int index);
+
+// --- sandbox mod hooks
+// Reads scene.keys and scene.controls of the scene table `o` into `settings` (scene_controls.cpp).
+class Options;
+void readModSettings(const Options& o, SceneSettings& settings);
+// The starting values of the scene's controls: the defaults, or `given` (clamped) by name.
+std::vector<double> initialControlValues(const SceneSettings& settings, const std::map<std::string, double>& given);
+// world.controls: a handle reading and setting the sliders by name (scene_controls.cpp).
+void registerControlsType(lua_State* L);
+void pushControls(lua_State* L, Scene::Impl& scene);
+// The event table of OnMouse(world, event) (lua_mouse_event.cpp).
+void pushMouseEvent(lua_State* L, const MouseEvent& event);
 // "body 'ball' (id 3)", "a spring", ... for messages.
 std::string describeHandle(lua_State* L, int index);
 

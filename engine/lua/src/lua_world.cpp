@@ -1,7 +1,7 @@
-// The `world` object scenes receive in PopulateWorld, OnStep, Check and OnKey.
+// The `world` object scenes receive in PopulateWorld and the hooks (OnStep, Check, OnKey, OnMouse, ...).
 //
 //   fields   gravity (vec2), integrator (string), dt, solver, iterations, substeps, sleeping: read
-//            and write; time, step_count, title: read only
+//            and write; time, step_count, title, controls (world.controls, scene_controls.cpp): read only
 //   methods  add_spring, add_damper, add_force, bodies, find, remove, step, kinetic_energy,
 //            potential_energy here; the body functions (add_box, ...) in lua_world_bodies.cpp, the
 //            joint functions (add_revolute, ..., joints, find_joint) in lua_joint_create.cpp
@@ -198,8 +198,7 @@ sol::object method(lua_State* L, std::string_view name) {
 }
 
 void unknownField(lua_State* L, const std::string& k) {
-  std::vector<std::string_view> all = kWorldFields;
-  all.insert(all.end(), kWorldMethods.begin(), kWorldMethods.end());
+  std::vector<std::string_view> all = joined({&kWorldFields, &api::kWorldModFields, &kWorldMethods});
   noSuchField(L, "world", k, all);
 }
 
@@ -216,6 +215,10 @@ sol::object worldIndex(lua_State* L, const LuaWorld& self, const sol::stack_obje
   if (k == "time") return sol::make_object(L, w.time());
   if (k == "step_count") return sol::make_object(L, w.stepCount());
   if (k == "title") return sol::make_object(L, self.scene->settings.title);
+  if (k == "controls") {  // scene_controls.cpp
+    pushControls(L, *self.scene);
+    return sol::stack::pop<sol::object>(L);
+  }
   sol::object m = method(L, k);
   if (m.get_type() == sol::type::lua_nil) unknownField(L, k);
   return m;
@@ -260,7 +263,7 @@ void worldNewIndex(lua_State* L, const LuaWorld& self, const sol::stack_object& 
     } else if (k == "sleeping") {
       if (value.get_type() != sol::type::boolean) fail(L, function, "must be true or false, got " + describe(value));
       w.setSleeping(value.as<bool>());
-    } else if (std::find(kWorldFields.begin(), kWorldFields.end(), k) != kWorldFields.end() ||
+    } else if (std::find(kWorldFields.begin(), kWorldFields.end(), k) != kWorldFields.end() || k == "controls" ||
                std::find(kWorldMethods.begin(), kWorldMethods.end(), k) != kWorldMethods.end()) {
       fail(L, function, "is read-only");
     } else {

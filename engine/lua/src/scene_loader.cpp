@@ -54,7 +54,7 @@ void readSettings(Scene::Impl& s, WorldDef& def, const std::string& at) {
   if (table.get_type() == sol::type::lua_nil) return;
   try {
     if (table.get_type() != sol::type::table) fail(L, "scene", "must be a table of settings, got " + describe(table));
-    const Options o(L, "scene", table, kSceneOptions);
+    const Options o(L, "scene", table, joined({&kSceneOptions, &api::kSceneModOptions}));
     if (o.has("memory_limit")) {
       const double cap = static_cast<double>(s.host->limits().memory_bytes >> 20);
       const auto bytes = static_cast<size_t>(o.inRange("memory_limit", 1, cap) * double(1 << 20));
@@ -91,6 +91,7 @@ void readSettings(Scene::Impl& s, WorldDef& def, const std::string& at) {
       if (c.has("center")) s.settings.camera_center = c.vec("center");
       if (c.has("height")) s.settings.camera_height = c.positive("height");
     }
+    readModSettings(o, s.settings);  // scene.keys, scene.controls (scene_controls.cpp)
   } catch (const ScriptError& e) {
     throw SceneError((at.empty() ? s.name + ": " : at) + e.what());
   }
@@ -112,8 +113,9 @@ sol::object hook(Scene::Impl& s, const char* name) {
 bool defined(const sol::object& f) { return f.valid() && f.get_type() == sol::type::function; }
 
 // Runs a hook under its budget; a Lua error becomes SceneError("<file>:<line>: <hook>: <message>").
-template <typename... Args>
-void call(Scene::Impl& s, const sol::object& f, std::string_view name, const Args&... args) {
+// `read` gets the state with the hook's one result on top (inside the protected call).
+template <typename Read, typename... Args>
+void callReading(Scene::Impl& s, const sol::object& f, std::string_view name, Read read, const Args&... args) {
   ++s.host->calls;
   std::optional<std::string> error;
   {
@@ -122,11 +124,18 @@ void call(Scene::Impl& s, const sol::object& f, std::string_view name, const Arg
       lua_State* L = s.host->L();
       f.push(L);
       (sol::stack::push(L, args), ...);
-      lua_call(L, static_cast<int>(sizeof...(Args)), 0);
+      lua_call(L, static_cast<int>(sizeof...(Args)), 1);
+      read(L);
+      lua_pop(L, 1);
     });
     if (error) error = s.host->errorText(std::move(*error), name);  // while the window is open (budget.h)
   }
   if (error) throw SceneError(*error);
+}
+
+template <typename... Args>
+void call(Scene::Impl& s, const sol::object& f, std::string_view name, const Args&... args) {
+  callReading(s, f, name, [](lua_State*) {}, args...);
 }
 
 // --- event hooks (lua_events.h): called after a step, before OnStep, each under its own budget.
@@ -147,6 +156,7 @@ void setUp(Scene::Impl& s) {
   registerDrawType(L);
   registerShapeType(L);
   registerJointType(L);
+  registerControlsType(L);
   s.handles = s.host->lua().create_table();
   s.user_data = s.host->lua().create_table();
   s.shape_handles = makeWeakTable(L);
@@ -203,8 +213,7 @@ std::unique_ptr<Scene::Impl> load(std::string_view source, const std::string& na
     }
     pushHandle(L, LuaWorld{s.get()});
     s->world_handle = sol::stack::pop<sol::object>(L);
-    pushHandle(L, LuaDraw{});
-    s->draw = toHandle<LuaDraw>(L, -1);
+    pushDrawHandles(L, s->draw);
     s->draw_handle = sol::stack::pop<sol::object>(L);
     populate = hook(*s, "PopulateWorld");
     s->on_step = hook(*s, "OnStep");
@@ -213,6 +222,9 @@ std::unique_ptr<Scene::Impl> load(std::string_view source, const std::string& na
     s->on_draw = hook(*s, "OnDraw");
     s->exact = hook(*s, "Exact");
     for (const EventHook& h : eventHooks()) (*s).*h.slot = hook(*s, h.name.data());
+    s->on_mouse = hook(*s, "OnMouse");
+    s->on_control = hook(*s, "OnControl");
+    s->control_values = initialControlValues(s->settings, options.control_values);
   });
   if (error) throw SceneError(name + ": " + host.errorText(*error, ""));
   if (!defined(populate))
@@ -263,6 +275,7 @@ Scene::Impl::~Impl() {
   on_step = check = on_key = on_draw = exact = sol::object();
   for (const EventHook& h : eventHooks()) this->*h.slot = sol::object();
   pre_solve_functions = sol::table();
+  on_mouse = on_control = sol::object();
   handles = user_data = shape_handles = joint_handles = sol::table();
   world_handle = draw_handle = sol::object();
   draw = nullptr;
@@ -316,11 +329,12 @@ void Scene::onKey(const std::string& key) {
 bool Scene::hasOnDraw() const { return defined(impl_->on_draw); }
 Scene::DrawReport Scene::onDraw(OverlayDraw& draw) {
   LuaDraw& d = *impl_->draw;
-  d = LuaDraw{};
+  d.report = {};
+  d.text_bytes = 0;
   if (!hasOnDraw()) return {};
   d.target = &draw;
   try {
-    call(*impl_, impl_->on_draw, "OnDraw", impl_->draw_handle);
+    call(*impl_, impl_->on_draw, "OnDraw", impl_->draw_handle, impl_->world_handle);
   } catch (...) {
     d.target = nullptr;
     throw;
@@ -330,6 +344,35 @@ Scene::DrawReport Scene::onDraw(OverlayDraw& draw) {
 }
 
 bool Scene::hasExact() const { return defined(impl_->exact); }
+
+// --- sandbox mod hooks: OnMouse, OnControl (the controls themselves: scene_controls.cpp)
+
+bool Scene::hasOnMouse() const { return defined(impl_->on_mouse); }
+
+bool Scene::onMouse(const MouseEvent& event) {
+  if (!hasOnMouse()) return false;
+  bool consumed = false;
+  std::string bad;
+  const auto read = [&](lua_State* L) {
+    const int type = lua_type(L, -1);
+    if (type == LUA_TBOOLEAN) consumed = lua_toboolean(L, -1);
+    else if (type != LUA_TNIL) bad = describe(L, -1);
+  };
+  const auto pushEvent = [&] {
+    pushMouseEvent(impl_->host->L(), event);
+    return sol::stack::pop<sol::object>(impl_->host->L());
+  };
+  sol::object table;
+  if (const auto error = impl_->host->run([&] { table = pushEvent(); }))
+    throw SceneError(impl_->name + ": " + impl_->host->errorText(*error, "OnMouse"));
+  callReading(*impl_, impl_->on_mouse, "OnMouse", read, impl_->world_handle, table);
+  if (!bad.empty()) throw SceneError(impl_->name + ": OnMouse: must return true (the event is consumed), false or nothing, got " + bad);
+  return consumed;
+}
+
+void Scene::onControl(const std::string& name) {
+  if (defined(impl_->on_control)) call(*impl_, impl_->on_control, "OnControl", impl_->world_handle, name);
+}
 
 namespace {
 

@@ -39,13 +39,24 @@ void Camera::zoomAbout(const Vec2& px, double factor) {
 }
 
 void Camera::fit(const Aabb& box, double fill) {
+  fitIn(box, ScreenRect{Vec2::Zero(), Vec2(width_px, height_px)}, fill);
+}
+
+void Camera::fitIn(const Aabb& box, const ScreenRect& area, double fill) {
   const Vec2 size = box.upper - box.lower;
   if (!isFinite(box.lower) || !isFinite(box.upper) || size.x() < 0 || size.y() < 0) return;
-  center = 0.5 * (box.lower + box.upper);
+  if (!(area.width() > 0.0) || !(area.height() > 0.0)) return;
   // A point or a line still gets a sensible scale: at least 1 m of world on screen.
   const double sx = std::max(size.x(), 1.0), sy = std::max(size.y(), 1.0);
-  const double scale = fill * std::min(width_px / sx, height_px / sy);
+  const double scale = fill * std::min(area.width() / sx, area.height() / sy);
   pixels_per_metre = std::clamp(scale, kMinPixelsPerMetre, kMaxPixelsPerMetre);
+  placeAt(0.5 * (box.lower + box.upper), area.middle());
+}
+
+// From screenToWorld(px) = world: c_x = w_x − (px_x − W/2) / s, c_y = w_y + (px_y − H/2) / s.
+void Camera::placeAt(const Vec2& world, const Vec2& px) {
+  center = Vec2(world.x() - (px.x() - 0.5 * width_px) / pixels_per_metre,
+                world.y() + (px.y() - 0.5 * height_px) / pixels_per_metre);
 }
 
 }  // namespace rigidlab::sandbox

@@ -11,6 +11,14 @@
 
 namespace rigidlab::sandbox {
 
+// A rectangle of the window in pixels: `lower` its top-left corner, `upper` its bottom-right.
+struct ScreenRect {
+  Vec2 lower = Vec2::Zero(), upper = Vec2::Zero();
+  Vec2 middle() const { return 0.5 * (lower + upper); }
+  double width() const { return upper.x() - lower.x(); }
+  double height() const { return upper.y() - lower.y(); }
+};
+
 struct Camera {
   Vec2 center = Vec2::Zero();   // world point at the middle of the viewport [m]
   double pixels_per_metre = 36.0;
@@ -37,6 +45,11 @@ struct Camera {
   void zoomAbout(const Vec2& px, double factor);
   // Centres the box and scales it to fill `fill` (0..1] of the viewport in its tighter direction.
   void fit(const Aabb& box, double fill = 0.85);
+  // The same in `area`, a part of the viewport (what the panels leave free): the box's centre at
+  // the area's middle, the box filling `fill` of the area.
+  void fitIn(const Aabb& box, const ScreenRect& area, double fill = 0.85);
+  // Moves the view (scale kept) so that the world point `world` is at pixel `px`.
+  void placeAt(const Vec2& world, const Vec2& px);
 };
 
 }  // namespace rigidlab::sandbox

@@ -12,16 +12,17 @@
 #include <numbers>
 
 #include "panel_inputs.h"
+#include "panel_layout.h"
 #include "property_panels.h"
 #include "renderer.h"
 #include "rigidlab/lua/scene_writer.h"
+#include "scene_controls_panel.h"
 #include "tools.h"
 
 namespace rigidlab::sandbox {
 
 namespace {
 
-constexpr float kLeftWidth = 280.0f, kRightWidth = 320.0f, kMargin = 8.0f;
 const ImVec4 kErrorColor(1.0f, 0.45f, 0.4f, 1.0f), kWarnColor(1.0f, 0.8f, 0.3f, 1.0f), kDimColor(0.6f, 0.6f, 0.65f, 1.0f);
 
 void sceneSection(Session& s) {
@@ -184,8 +185,8 @@ void drawSection(Session& s) {
 }
 
 void controlsWindow(Session& s) {
-  ImGui::SetNextWindowPos(ImVec2(kMargin, kMargin), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSizeConstraints(ImVec2(kLeftWidth, 0), ImVec2(kLeftWidth, FLT_MAX));
+  ImGui::SetNextWindowPos(ImVec2(kPanelMargin, kPanelMargin), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(kLeftPanelWidth, 0), ImVec2(kLeftPanelWidth, FLT_MAX));
   ImGui::Begin("rigidlab", nullptr, ImGuiWindowFlags_AlwaysAutoResize);  // grows and shrinks with its sections
   sceneSection(s);
   if (ImGui::CollapsingHeader("Tools", ImGuiTreeNodeFlags_DefaultOpen)) toolsSection(s);
@@ -202,8 +203,8 @@ void browserWindow(Session& s, PanelState& p) {
   }
   if (!p.browser_was_open) p.scenes = browsableScenes();  // fresh list each time it opens
   p.browser_was_open = true;
-  const ImVec2 size(kLeftWidth, 300);
-  ImGui::SetNextWindowPos(ImVec2(kMargin + kLeftWidth + kMargin, kMargin), ImGuiCond_FirstUseEver);
+  const ImVec2 size(kLeftPanelWidth, 300);
+  ImGui::SetNextWindowPos(ImVec2(kPanelMargin + kLeftPanelWidth + kPanelMargin, kPanelMargin), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(size, ImGuiCond_FirstUseEver);
   if (ImGui::Begin("Scenes", &s.show_browser)) {
     ImGui::TextColored(kDimColor, "%s", (lua::scriptsDirectory() / "scenes").string().c_str());
@@ -221,8 +222,8 @@ void browserWindow(Session& s, PanelState& p) {
 
 void statisticsWindow(Session& s, PanelState& p, Renderer& r) {
   const ImGuiIO& io = ImGui::GetIO();
-  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - kRightWidth - kMargin, kMargin), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSizeConstraints(ImVec2(kRightWidth, 0), ImVec2(kRightWidth, FLT_MAX));
+  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - kRightPanelWidth - kPanelMargin, kPanelMargin), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(kRightPanelWidth, 0), ImVec2(kRightPanelWidth, FLT_MAX));
   ImGui::Begin("Statistics", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   p.fps = p.fps == 0.0 ? io.Framerate : 0.9 * p.fps + 0.1 * io.Framerate;
   const StepStats& st = s.world().stats();
@@ -269,8 +270,8 @@ void statisticsWindow(Session& s, PanelState& p, Renderer& r) {
 
 void energyWindow(Session& s) {
   const ImGuiIO& io = ImGui::GetIO();
-  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - kRightWidth - kMargin, 140), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(kRightWidth, 200), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - kRightPanelWidth - kPanelMargin, 140), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(kRightPanelWidth, 200), ImGuiCond_FirstUseEver);
   ImGui::Begin("Energy");
   const float text_rows = 3 * ImGui::GetTextLineHeightWithSpacing() + 8;
   drawEnergyPlot(s.energy, std::max(60.0f, ImGui::GetContentRegionAvail().y - text_rows));
@@ -281,8 +282,8 @@ void exactWindow(Session& s) {
   const ExactReadout& x = s.exact;
   if (!x.active && x.error.empty()) return;
   const ImGuiIO& io = ImGui::GetIO();
-  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - kRightWidth - kMargin, 350), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSizeConstraints(ImVec2(kRightWidth, 0), ImVec2(kRightWidth, FLT_MAX));
+  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - kRightPanelWidth - kPanelMargin, 350), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(kRightPanelWidth, 0), ImVec2(kRightPanelWidth, FLT_MAX));
   ImGui::Begin("Exact solution", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   if (!x.error.empty()) {
     ImGui::PushTextWrapPos(0.0f);
@@ -298,7 +299,7 @@ void exactWindow(Session& s) {
     for (const auto& [t, e] : x.history) values.push_back(static_cast<float>(e));
     if (values.size() >= 2)
       ImGui::PlotLines("##error", values.data(), static_cast<int>(values.size()), 0, "position error", 0.0f, FLT_MAX,
-                       ImVec2(kRightWidth - 20, 60));
+                       ImVec2(kRightPanelWidth - 20, 60));
     if (ImGui::BeginTable("bodies", 3, ImGuiTableFlags_SizingStretchProp)) {
       int shown = 0;
       for (const BodyError& e : x.bodies) {
@@ -390,7 +391,7 @@ void errorOverlay(Session& s) {
     return;
   }
   const ImGuiIO& io = ImGui::GetIO();
-  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, kMargin), ImGuiCond_Always, ImVec2(0.5f, 0.0f));
+  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, kPanelMargin), ImGuiCond_Always, ImVec2(0.5f, 0.0f));
   ImGui::SetNextWindowSizeConstraints(ImVec2(300, 0), ImVec2(std::min(760.0f, io.DisplaySize.x - 40), 400));
   ImGui::PushStyleColor(ImGuiCol_WindowBg, ImVec4(0.35f, 0.05f, 0.05f, 0.92f));
   ImGui::Begin("##error", nullptr,
@@ -431,6 +432,7 @@ void drawPanels(Session& s, PanelState& p, Renderer& renderer) {
     statisticsWindow(s, p, renderer);
     energyWindow(s);
     exactWindow(s);
+    sceneControlsWindow(s);
     bodyWindow(s, p);
     jointWindow(s, p);
   }

@@ -1,4 +1,6 @@
-// Picking bodies and joints under the cursor (picking.h).
+// Picking bodies and joints under the cursor (picking.h). Bodies through the world's queries
+// (World::queryPoint, World::overlap), which never find a disabled body: a click does not select
+// one (a body disabled from the Body panel stays selected there until something else is).
 #include "picking.h"
 
 #include <algorithm>
@@ -7,26 +9,32 @@ namespace rigidlab::sandbox {
 
 namespace {
 
-double distanceToSegment(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const Vec2 d = b - a;
-  const double t = d.squaredNorm() > 0.0 ? std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
-  return (p - (a + t * d)).norm();
+// Every shape, whatever its filter, sensors included: the user clicks what is drawn.
+QueryFilter everything() {
+  QueryFilter f;
+  f.category = ~uint64_t{0};
+  f.sensors = true;
+  return f;
 }
 
 }  // namespace
 
 std::optional<BodyId> pickBody(const World& world, const Vec2& p, double tolerance, BodyId except) {
-  const std::vector<BodyId> ids = world.bodyIds();
-  for (auto it = ids.rbegin(); it != ids.rend(); ++it) {  // the last made is drawn on top
-    if (*it == except) continue;
-    const Body& b = world.body(*it);
-    for (const ShapeId sid : b.shapes) {
-      const Shape& g = world.shape(sid).geometry;
-      if (hasArea(g.type) ? containsPoint(g, b.xf, p)
-                          : distanceToSegment(p, b.xf.apply(g.vertices[0]), b.xf.apply(g.vertices[1])) <= tolerance)
-        return *it;
-    }
-  }
+  // Through the world's queries: shapes with area containing p, shapes without (segments, chain
+  // segments) within `tolerance` of it.
+  std::vector<BodyId> hits;
+  for (const ShapeId sid : world.queryPoint(p, everything())) hits.push_back(world.shape(sid).body);
+  Transform at;
+  at.p = p;
+  if (tolerance > 0.0)
+    for (const ShapeId sid : world.overlap(makeCircle(tolerance), at, everything()))
+      if (!hasArea(world.shape(sid).geometry.type)) hits.push_back(world.shape(sid).body);
+  std::erase(hits, except);
+  if (hits.empty()) return std::nullopt;
+  // The last made is drawn on top: the hit latest in creation order.
+  const std::vector<BodyId> order = world.bodyIds();
+  for (auto it = order.rbegin(); it != order.rend(); ++it)
+    if (std::find(hits.begin(), hits.end(), *it) != hits.end()) return *it;
   return std::nullopt;
 }
 

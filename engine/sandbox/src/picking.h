@@ -7,7 +7,7 @@
 
 namespace rigidlab::sandbox {
 
-// The topmost body with a shape that contains `p`, or, for shapes without area (segments, chain
+// The topmost enabled body with a shape that contains `p`, or, for shapes without area (segments, chain
 // segments), that passes within `tolerance` [m] of it; `except` is passed over (the joint tool's
 // second click looks for another body than the first).
 std::optional<BodyId> pickBody(const World& world, const Vec2& p, double tolerance, BodyId except = {});

@@ -153,26 +153,34 @@ bool Renderer::fillAllowed(double area) {
   return true;
 }
 
-void Renderer::drawPolygon(std::span<const Vec2> vertices, const Color& fill, const Color& outline) {
+void Renderer::fillConvex(std::span<const Vec2> vertices, const Color& color) {
   if (vertices.size() < 3) return;
   double area = 0.0;
   for (size_t i = 1; i + 1 < vertices.size(); ++i) area += 0.5 * cross(vertices[i] - vertices[0], vertices[i + 1] - vertices[0]);
   if (fillAllowed(std::abs(area)))
-    for (size_t i = 1; i + 1 < vertices.size(); ++i) triangle(vertices[0], vertices[i], vertices[i + 1], fill);  // convex
+    for (size_t i = 1; i + 1 < vertices.size(); ++i) triangle(vertices[0], vertices[i], vertices[i + 1], color);
+}
+
+void Renderer::drawPolygon(std::span<const Vec2> vertices, const Color& fill, const Color& outline) {
+  if (vertices.size() < 3) return;
+  fillConvex(vertices, fill);
   drawPolyline(vertices, true, outline);
 }
 
-void Renderer::drawCircle(const Vec2& center, double radius, double angle, const Color& fill, const Color& outline) {
-  if (fillAllowed(std::numbers::pi * radius * radius)) {
-    const int n = circleSegments(radius);
-    Vec2 prev = center + Vec2(radius, 0.0);
-    for (int i = 1; i <= n; ++i) {
-      const double t = 2.0 * std::numbers::pi * i / n;
-      const Vec2 p = center + radius * Vec2(std::cos(t), std::sin(t));
-      triangle(center, prev, p, fill);
-      prev = p;
-    }
+void Renderer::fillDisc(const Vec2& center, double radius, const Color& color) {
+  if (!fillAllowed(std::numbers::pi * radius * radius)) return;
+  const int n = circleSegments(radius);
+  Vec2 prev = center + Vec2(radius, 0.0);
+  for (int i = 1; i <= n; ++i) {
+    const double t = 2.0 * std::numbers::pi * i / n;
+    const Vec2 p = center + radius * Vec2(std::cos(t), std::sin(t));
+    triangle(center, prev, p, color);
+    prev = p;
   }
+}
+
+void Renderer::drawCircle(const Vec2& center, double radius, double angle, const Color& fill, const Color& outline) {
+  fillDisc(center, radius, fill);
   drawCircleOutline(center, radius, outline);
   drawSegment(center, center + radius * Vec2(std::cos(angle), std::sin(angle)), outline);  // shows rotation
 }
@@ -214,6 +222,25 @@ void Renderer::circle(const Vec2& center, double radius, const Color& color) { d
 
 void Renderer::text(const Vec2& position, const std::string& text, const Color& color) {
   texts_.push_back({position, text, color});
+}
+
+void Renderer::polygon(std::span<const Vec2> points, const Color& color, const std::optional<Color>& fill) {
+  if (fill && points.size() <= kMaxFilledPolygonPoints) {
+    try {  // a concave outline is filled piece by piece; one that crosses itself is not filled
+      for (const auto& piece : decomposeConcave(points)) fillConvex(piece, *fill);
+    } catch (const std::exception&) {
+    }
+  }
+  drawPolyline(points, true, color);
+}
+
+void Renderer::capsule(const Vec2& a, const Vec2& b, double radius, const Color& color, const std::optional<Color>& fill) {
+  drawCapsule(a, b, radius, fill.value_or(Color{0, 0, 0, 0}), color);
+}
+
+void Renderer::disc(const Vec2& center, double radius, const Color& color, const Color& fill) {
+  fillDisc(center, radius, fill);
+  drawCircleOutline(center, radius, color);
 }
 
 void Renderer::drawTexts(ImDrawList* list) {

@@ -56,6 +56,14 @@ class Renderer final : public DebugDraw, public lua::OverlayDraw {
   void line(const Vec2& a, const Vec2& b, const Color& color) override;
   void circle(const Vec2& center, double radius, const Color& color) override;
   void text(const Vec2& position, const std::string& text, const Color& color) override;
+  void polygon(std::span<const Vec2> points, const Color& color, const std::optional<Color>& fill) override;
+  void capsule(const Vec2& a, const Vec2& b, double radius, const Color& color, const std::optional<Color>& fill) override;
+  void disc(const Vec2& center, double radius, const Color& color, const Color& fill) override;
+  Vec2 screenToWorld(const Vec2& px) const override { return camera_.screenToWorld(px); }
+  double metresPerPixel() const override { return 1.0 / camera_.pixels_per_metre; }
+  // A scene's polygon of more points than this is drawn as its outline only (filling a concave one
+  // splits it into convex pieces, which takes time cubic in the points at worst).
+  static constexpr size_t kMaxFilledPolygonPoints = 64;
 
   // Outlines only (tool previews, overlay circles).
   void drawCircleOutline(const Vec2& center, double radius, const Color& color);
@@ -80,6 +88,8 @@ class Renderer final : public DebugDraw, public lua::OverlayDraw {
     float r, g, b, a;
   };
   void triangle(const Vec2& a, const Vec2& b, const Vec2& c, const Color& color);
+  void fillConvex(std::span<const Vec2> vertices, const Color& color);  // within the fill budget
+  void fillDisc(const Vec2& center, double radius, const Color& color);  // within the fill budget
   int circleSegments(double radius) const;
   // Takes `area` [m²] from the frame's fill budget; false (and counted) once it is spent.
   bool fillAllowed(double area);

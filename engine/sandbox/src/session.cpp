@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "panel_layout.h"
 #include "rigidlab/lua/scene_text.h"
 #include "rigidlab/lua/scene_writer.h"
 
@@ -38,16 +39,31 @@ WorldOverrides currentValues(const lua::Scene& scene) {
           def.warm_starting, def.sleeping,  def.contact_solver, def.substeps};
 }
 
+// The scene's camera as given (its centre is the window's middle, as saved worlds store it);
+// without one the bodies are framed in the part of the window the panels leave free.
 void placeCamera(Session& s) {
   const lua::SceneSettings& settings = s.scene->settings();
-  if (const auto box = worldBounds(s.world())) {
-    s.camera.fit(*box);
+  const ScreenRect area = freeViewArea(s.camera.width_px, s.camera.height_px, s.show_panels);
+  const auto box = worldBounds(s.world());
+  if (box) {
+    s.camera.fitIn(*box, area);
   } else {
     s.camera.center = Vec2::Zero();
     s.camera.setHeightMetres(20.0);
   }
-  if (settings.camera_height) s.camera.setHeightMetres(*settings.camera_height);
+  if (settings.camera_height) {
+    s.camera.setHeightMetres(*settings.camera_height);
+    if (box) s.camera.placeAt(0.5 * (box->lower + box->upper), area.middle());
+  }
   if (settings.camera_center) s.camera.center = *settings.camera_center;
+}
+
+// A script failed while running: the simulation pauses and says why (overlay and standard error).
+void pauseOnScriptError(Session& s, const std::exception& e) {
+  s.run_error = overlayText(e.what());
+  std::fprintf(stderr, "rigidlab: paused: %s\n", s.run_error.c_str());
+  std::fflush(stderr);
+  setPaused(s, true);
 }
 
 void afterWorldChange(Session& s) {
@@ -130,7 +146,10 @@ void adoptScene(Session& s, LoadResult r) {
 }
 
 void requestLoad(Session& s, const fs::path& file, LoadPurpose purpose) {
-  s.loader.start(file, purpose, s.scene_options);
+  lua::SceneOptions options = s.scene_options;
+  // A reload or reset keeps the scene's sliders where the user left them (scene.controls).
+  if (purpose != LoadPurpose::Open && s.scene && s.scene_loaded) options.control_values = s.scene->controlValues();
+  s.loader.start(file, purpose, options);
 }
 
 void updateHotReload(Session& s, Session::Clock::time_point now) {
@@ -177,11 +196,8 @@ bool guardedStep(Session& s, double dt) {
     s.scene->step(dt);
     return true;
   } catch (const std::exception& e) {
-    s.run_error = overlayText(e.what());
+    pauseOnScriptError(s, e);
   }
-  std::fprintf(stderr, "rigidlab: paused: %s\n", s.run_error.c_str());
-  std::fflush(stderr);
-  setPaused(s, true);
   return false;
 }
 
@@ -266,8 +282,20 @@ std::optional<Aabb> worldBounds(const World& world) {
   return box;
 }
 
+bool runSceneHook(Session& s, const std::function<bool()>& hook) {
+  try {
+    const bool result = hook();
+    s.history.capture(s.world());  // bodies it moved or made are drawn where they are
+    return result;
+  } catch (const std::exception& e) {
+    pauseOnScriptError(s, e);
+  }
+  return false;
+}
+
 void fitCamera(Session& s) {
-  if (const auto box = worldBounds(s.world())) s.camera.fit(*box);
+  if (const auto box = worldBounds(s.world()))
+    s.camera.fitIn(*box, freeViewArea(s.camera.width_px, s.camera.height_px, s.show_panels));
 }
 
 std::string describe(const World& world, BodyId id) {

@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -167,6 +168,11 @@ void advance(Session& s, double frame_seconds);
 // One step now (the single-step key); pauses first.
 void stepOnce(Session& s);
 void setPaused(Session& s, bool paused);
+
+// Runs a hook of the scene's that may edit the world between steps (OnKey, OnMouse, OnControl); a
+// script error pauses the simulation with the error shown. Returns what `hook` returned, false
+// after an error.
+bool runSceneHook(Session& s, const std::function<bool()>& hook);
 
 void applyOverrides(Session& s);
 void clearOverrides(Session& s);  // and restore the scene's own values (by reloading)

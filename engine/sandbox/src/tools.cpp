@@ -8,6 +8,7 @@
 
 #include "joint_tool.h"
 #include "mouse_drag.h"
+#include "mouse_event.h"
 #include "picking.h"
 #include "renderer.h"
 #include "rigidlab/error.h"
@@ -57,7 +58,7 @@ constexpr Shortcut kShortcuts[] = {
     {"F9", "loop: fixed step / variable step"},
     {"Tab", "show or hide the panels"},
     {"Ctrl+O", "scene browser (scripts/scenes/)"},
-    {"other keys", "passed to the scene's OnKey(world, key)"},
+    {"other keys", "passed to the scene's OnKey(world, key); a scene may take bound keys too (scene.keys)"},
 };
 
 std::string keyName(SDL_Keycode key) {
@@ -277,13 +278,26 @@ bool handleKey(Session& s, const SDL_KeyboardEvent& key) {
 
 void forwardKey(Session& s, SDL_Keycode key) {
   if (!s.scene->hasOnKey()) return;
-  try {
+  runSceneHook(s, [&] {
     s.scene->onKey(keyName(key));
-    s.history.capture(s.world());
-  } catch (const std::exception& e) {
-    s.run_error = e.what();
-    setPaused(s, true);
-  }
+    return true;
+  });
+}
+
+// A key the scene took from the sandbox's bindings (scene.keys): plain, without Ctrl or Alt.
+bool claimedByScene(const Session& s, const SDL_KeyboardEvent& key) {
+  if (key.keysym.mod & (KMOD_CTRL | KMOD_ALT | KMOD_GUI)) return false;
+  const auto& keys = s.scene->settings().keys;
+  return std::find(keys.begin(), keys.end(), keyName(key.keysym.sym)) != keys.end();
+}
+
+// Offers a mouse event to the scene's OnMouse; true if the scene consumed it. Not while a script
+// error is shown (until Space resumes or the scene reloads): a failing OnMouse would otherwise
+// fail again at every move of the cursor.
+bool offerToScene(Session& s, const SDL_Event& e) {
+  if (!s.scene->hasOnMouse() || !s.run_error.empty()) return false;
+  const auto event = sceneMouseEvent(e, s.camera, s.tools.mouse_px, SDL_GetModState());
+  return event && runSceneHook(s, [&] { return s.scene->onMouse(*event); });
 }
 
 }  // namespace
@@ -369,24 +383,28 @@ void handleEvent(Session& s, const SDL_Event& e, InputCapture capture) {
   switch (e.type) {
     case SDL_KEYDOWN:
       if (capture.keyboard) return;
+      if (claimedByScene(s, e.key)) {
+        forwardKey(s, e.key.keysym.sym);
+        return;
+      }
       if (!handleKey(s, e.key) && !(e.key.keysym.mod & (KMOD_CTRL | KMOD_ALT | KMOD_GUI))) forwardKey(s, e.key.keysym.sym);
       return;
     case SDL_MOUSEMOTION: {
       const Vec2 previous = t.mouse_px;
       t.mouse_px = Vec2(e.motion.x, e.motion.y);
+      if (!capture.mouse && offerToScene(s, e)) return;
       if (t.gesture == Gesture::Pan) s.camera.pan(t.mouse_px - previous);
       else if (t.gesture == Gesture::Move || t.gesture == Gesture::Rotate) moveGesture(s);
       return;
     }
     case SDL_MOUSEWHEEL: {
-      if (capture.mouse) return;
-      const double notches = e.wheel.preciseY * (e.wheel.direction == SDL_MOUSEWHEEL_FLIPPED ? -1.0 : 1.0);
-      s.camera.zoomAbout(t.mouse_px, std::pow(kZoomStep, notches));
+      if (capture.mouse || offerToScene(s, e)) return;
+      s.camera.zoomAbout(t.mouse_px, std::pow(kZoomStep, wheelNotches(e.wheel)));
       return;
     }
     case SDL_MOUSEBUTTONDOWN: {
       t.mouse_px = Vec2(e.button.x, e.button.y);
-      if (capture.mouse || t.gesture != Gesture::None) return;
+      if (capture.mouse || offerToScene(s, e) || t.gesture != Gesture::None) return;
       t.press_px = t.mouse_px;
       t.press_world = cursorWorld(s);
       if (e.button.button == SDL_BUTTON_RIGHT || e.button.button == SDL_BUTTON_MIDDLE) {
@@ -407,11 +425,14 @@ void handleEvent(Session& s, const SDL_Event& e, InputCapture capture) {
     case SDL_MOUSEBUTTONUP: {
       t.mouse_px = Vec2(e.button.x, e.button.y);
       const bool left = e.button.button == SDL_BUTTON_LEFT;
+      // A release the scene consumed still ends a gesture its press started (nothing is left
+      // stuck to the cursor), but makes no body.
+      const bool consumed = !capture.mouse && offerToScene(s, e);
       if (t.gesture == Gesture::Pan && !left) {
         t.gesture = Gesture::None;
       } else if (left && t.gesture == Gesture::Create) {
         t.gesture = Gesture::None;
-        releaseCreate(s);
+        if (!consumed) releaseCreate(s);
       } else if (left && t.gesture != Gesture::None && t.gesture != Gesture::Pan) {
         cancelGesture(s);  // ends a drag, commits a move or turn
       }

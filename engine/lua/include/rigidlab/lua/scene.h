@@ -15,7 +15,9 @@
 
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <memory>
+#include <span>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -39,7 +41,8 @@ struct ScriptLimits {
   // Wall-clock budgets (engine/lua/src/budget.h). A script still running when its budget is
   // spent stops with "<file>:<line>: <hook>: script ran longer than its budget of 1 s (infinite
   // loop?)"; pcall cannot catch it.
-  double hook_seconds = 1.0;   // each call of the main chunk, PopulateWorld, OnStep, Check, OnKey, OnDraw, Exact [s]
+  double hook_seconds = 1.0;   // each call of the main chunk, PopulateWorld, OnStep, Check, OnKey, OnDraw, Exact,
+                               // OnMouse, OnControl [s]
   double force_seconds = 1.0;  // all Lua force evaluations of one Scene::step together [s]
 };
 
@@ -56,9 +59,39 @@ struct SceneSettings {
   // `scene.expect_incidents = true`: bodies frozen by the NaN firewall or a non-finite energy are
   // what the scene is about (a test of the firewall), so a headless run still exits with 0.
   bool expect_incidents = false;
+
+  // --- sandbox mod hooks (OnMouse, scene.keys, scene.controls)
+  // `scene.keys = {"space", "a"}`: keys the scene takes from the sandbox's own bindings while it
+  // runs; OnKey(world, key) gets them instead (key names as OnKey receives them).
+  std::vector<std::string> keys;
+  // `scene.controls = {{name = "wind", min = 0, max = 20, value = 5}, {name = "reset", kind = "button"}}`:
+  // sliders and buttons in the sandbox's Controls panel, in the order given.
+  struct Control {
+    enum class Kind { Slider, Button };
+    std::string name;
+    Kind kind = Kind::Slider;
+    double min = 0.0, max = 1.0, value = 0.0;  // a slider's range and default value
+  };
+  std::vector<Control> controls;
+};
+
+// A mouse event of the sandbox as OnMouse(world, event) receives it (Scene::onMouse).
+struct MouseEvent {
+  enum class Kind { Press, Release, Move, Wheel };
+  enum class Button { None, Left, Right, Middle };  // None: a move or a wheel turn
+  Kind kind = Kind::Move;
+  Button button = Button::None;
+  Vec2 position = Vec2::Zero();  // the cursor in world coordinates [m]
+  Vec2 screen = Vec2::Zero();    // the cursor in pixels from the window's top-left corner, y down
+  bool shift = false, ctrl = false, alt = false;
+  double wheel = 0.0;  // Wheel: notches turned, > 0 away from the user (the sandbox zooms in)
 };
 
 struct SceneOptions {
+  // Slider values to start with instead of the scene's defaults, by control name (the sandbox
+  // passes the running scene's on a hot reload, so they are kept); a value outside the new range
+  // is clamped into it, a name the scene no longer has is ignored.
+  std::map<std::string, double> control_values;
   // Where require() looks for modules after the scene's own directory; default: the scripts/
   // directory of this installation (see scriptsDirectory()).
   std::vector<std::filesystem::path> module_dirs;
@@ -67,13 +100,27 @@ struct SceneOptions {
   ScriptLimits limits;
 };
 
-// Drawing calls a scene makes from OnDraw(draw), in world coordinates.
+// Drawing calls a scene makes from OnDraw(draw, world), in world coordinates (draw.screen's are
+// converted with screenToWorld and metresPerPixel before they get here).
 class OverlayDraw {
  public:
   virtual ~OverlayDraw() = default;
   virtual void line(const Vec2& a, const Vec2& b, const Color& color) = 0;
   virtual void circle(const Vec2& center, double radius, const Color& color) = 0;
   virtual void text(const Vec2& position, const std::string& text, const Color& color) = 0;
+
+  // --- filled shapes and screen space (draw:polygon, draw:capsule, a circle's fill, draw.screen).
+  // The defaults draw outlines with line() and circle() and take screen coordinates as world ones,
+  // for drawers that only count or record calls.
+  // A polygon of 3 or more points in order (concave allowed), filled with `fill` if given.
+  virtual void polygon(std::span<const Vec2> points, const Color& color, const std::optional<Color>& fill);
+  virtual void capsule(const Vec2& a, const Vec2& b, double radius, const Color& color, const std::optional<Color>& fill);
+  // A circle filled with `fill` (circle() is the outline only).
+  virtual void disc(const Vec2& center, double radius, const Color& color, const Color& fill);
+  // draw.screen's coordinates: the world point under pixel `px` (from the window's top-left, y
+  // down) and the length of one pixel [m], this frame.
+  virtual Vec2 screenToWorld(const Vec2& px) const { return px; }
+  virtual double metresPerPixel() const { return 1.0; }
 };
 
 class Scene {
@@ -108,16 +155,33 @@ class Scene {
   bool hasOnKey() const;
   void onKey(const std::string& key);  // OnKey(world, key); key names as SDL's, lower case ("space", "a")
   bool hasOnDraw() const;
-  // What one OnDraw call drew. A frame draws at most kMaxDrawLines lines, kMaxDrawCircles circles
-  // and kMaxDrawTexts texts (of at most kDrawTextBytes each, kMaxDrawTextBytes in all): calls
+  // What one OnDraw call drew. A frame draws at most kMaxDrawLines lines, kMaxDrawCircles circles,
+  // kMaxDrawShapes polygons and capsules together, and kMaxDrawTexts texts (of at most kDrawTextBytes each, kMaxDrawTextBytes in all): calls
   // past that are dropped and `truncated` says so (the sandbox shows it).
   struct DrawReport {
     int lines = 0, circles = 0, texts = 0;
+    int shapes = 0;  // polygons and capsules
     bool truncated = false;
   };
   static constexpr int kMaxDrawLines = 20000, kMaxDrawCircles = 2000, kMaxDrawTexts = 500;
+  static constexpr int kMaxDrawShapes = 2000;          // polygons and capsules per frame
+  static constexpr size_t kMaxDrawPolygonPoints = 256;  // points of one draw:polygon
   static constexpr size_t kMaxDrawTextBytes = 64 << 10;
-  DrawReport onDraw(OverlayDraw& draw);  // OnDraw(draw)
+  DrawReport onDraw(OverlayDraw& draw);  // OnDraw(draw, world)
+
+  // --- sandbox mod hooks
+  bool hasOnMouse() const;
+  // OnMouse(world, event); true if it returned true (the event is consumed: the sandbox's tool
+  // does not act on it). It must return true, false or nothing.
+  bool onMouse(const MouseEvent& event);
+  // The current value of settings().controls[i] (a slider; 0 for a button).
+  double controlValue(size_t i) const;
+  // Sets slider i, clamped into its range (the sandbox's panel; world.controls.<name> = v).
+  void setControlValue(size_t i, double value);
+  // The sliders' current values by name (kept across a hot reload: SceneOptions::control_values).
+  std::map<std::string, double> controlValues() const;
+  // OnControl(world, name) if the scene defines it: after a button was pressed or a slider moved.
+  void onControl(const std::string& name);
 
   // Exact(t): a scene that knows its closed-form solution returns, for time t, a table keyed by
   // body name (or body handle) of states {position = {x, y} [, velocity = {x, y}] [, angle = a]
