@@ -12,6 +12,7 @@ local r, motor_speed, lower, upper = 0.4, -20, -0.25, 0.1
 local bump_x = 25
 local chassis, wheels, axles = nil, {}, {}
 local cruise_speed, worst_travel_low, worst_travel_high, worst_off_axis = nil, 0, 0, 0
+local travel = { low = math.huge, high = -math.huge }  -- the suspension's range, both wheels
 local axle_x = { -1.1, 1.1 }
 
 function PopulateWorld(world)
@@ -37,6 +38,7 @@ function OnStep(world, dt)
   for i, axle in ipairs(axles) do
     worst_travel_low = math.max(worst_travel_low, lower - axle.translation)
     worst_travel_high = math.max(worst_travel_high, axle.translation - upper)
+    travel.low, travel.high = math.min(travel.low, axle.translation), math.max(travel.high, axle.translation)
     -- The wheel's centre in the chassis frame: on the axis x = axle_x[i].
     local local_wheel = (wheels[i].position - chassis.position):rotated(-chassis.angle)
     worst_off_axis = math.max(worst_off_axis, math.abs(local_wheel.x - axle_x[i]))
@@ -50,12 +52,13 @@ end
 function Check(world)
   print(string.format("at t = %.2f s, x = %.1f: v = %.4f m/s, motor joint speed %.4f rad/s; after the bump x = %.1f",
                       cruise_speed.t, bump_x - 5, cruise_speed.v, cruise_speed.spin, chassis.position.x))
-  print(string.format("suspension past its limits by %.4f m (low), %.4f m (high); wheels off their axes %.2g m",
-                      worst_travel_low, worst_travel_high, worst_off_axis))
+  print(string.format("suspension travel %.4f .. %.4f m, past its limits by %.4f m (low), %.4f m (high); wheels off their axes %.2g m",
+                      travel.low, travel.high, worst_travel_low, worst_travel_high, worst_off_axis))
   -- Measured 0.0027 rad/s off: the contacts, solved after the motor, take a little of its speed back.
   check.near("the motor reached its speed", cruise_speed.spin, motor_speed, 0.01)
   check.near("speed = |motor_speed| · r (rolling without slipping)", cruise_speed.v, -motor_speed * r, 0.01 * -motor_speed * r)
   check.greater("the car crossed the bump", chassis.position.x, bump_x + 3)
+  check.greater("the bump pushed a wheel up to its upper limit", travel.high, upper - 1e-3)
   check.less("suspension above its lower limit (within 5 mm)", worst_travel_low, 0.005)
   check.less("suspension below its upper limit (within 5 mm)", worst_travel_high, 0.005)
   check.less("the wheels stay on their axes", worst_off_axis, 1e-3)

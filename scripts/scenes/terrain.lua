@@ -1,7 +1,8 @@
 -- A box slides at 8 m/s, without friction, over a flat ground made of one chain of 60 segments. A
 -- chain's segments know their neighbours (ghost vertices), so the box's corners do not catch on
--- the seams between them: its vertical speed stays near 0 and it keeps its 8 m/s. Ground made of
--- 60 flush static boxes instead tripped the same box, |vy| up to 1.86 m/s at a seam.
+-- the seams between them: its vertical speed stays near 0 (measured 3e-14 m/s) and it keeps its
+-- 8 m/s. Ground made of 60 flush static boxes of the same length instead trips the same box
+-- (measured: |vy| up to 2.18 m/s at a seam; it tumbles and stops 6 m on).
 local check = require "check"
 
 scene = { title = "Terrain: a chain of 60 segments", dt = 1/60, duration = 3.5, camera = { center = {14, 1}, height = 6 } }
