@@ -13,7 +13,7 @@ local head_offset = vec2(0, 0.5)
 local wall_x = 5.0
 local spin = 6.0
 
-local hammer, head, inertia0, flight_spin_error, hit_time = nil, nil, nil, 0, nil
+local hammer, head, inertia0, flight_spin_error, flight_vx_error, hit_time = nil, nil, nil, 0, 0, nil
 
 -- A box's own moment of inertia about its centre: m (w² + h²) / 12.
 local function box_inertia(m, w, h) return m * (w * w + h * h) / 12 end
@@ -37,7 +37,7 @@ function PopulateWorld(world)
   check.near("inertia = parallel-axis sum", hammer.inertia, inertia, 1e-12)
 
   inertia0 = inertia
-  hammer.velocity = vec2(7, 4)
+  hammer.velocity = vec2(7, 4)  -- of the centre of mass
   hammer.angular_velocity = spin
 end
 
@@ -48,6 +48,7 @@ function OnStep(world, dt)
       hit_time = world.time
     else
       flight_spin_error = math.max(flight_spin_error, math.abs(hammer.angular_velocity - spin))
+      flight_vx_error = math.max(flight_vx_error, math.abs(hammer.velocity.x - 7))
     end
   end
 end
@@ -57,6 +58,7 @@ function Check(world)
                       hit_time or -1, flight_spin_error, hammer.center.x, hammer.velocity.x))
   check.that("the hammer hit something", hit_time ~= nil)
   check.less("spin constant in free flight (no torque about the centre of mass)", flight_spin_error, 1e-12)
+  check.less("and the centre of mass's horizontal speed", flight_vx_error, 1e-12)
   -- The shape never moves in its body: the head's centre is its offset, exactly.
   check.near("head offset x after the hit", head.center.x, head_offset.x, 0)
   check.near("head offset y after the hit", head.center.y, head_offset.y, 0)
