@@ -50,6 +50,7 @@ function OnStep(world, dt)
 end
 
 function Check(world)
+  check.that("the car reached the bump", cruise_speed ~= nil)
   print(string.format("at t = %.2f s, x = %.1f: v = %.4f m/s, motor joint speed %.4f rad/s; after the bump x = %.1f",
                       cruise_speed.t, bump_x - 5, cruise_speed.v, cruise_speed.spin, chassis.position.x))
   print(string.format("suspension travel %.4f .. %.4f m, past its limits by %.4f m (low), %.4f m (high); wheels off their axes %.2g m",
