@@ -183,6 +183,7 @@ function Shape:remove() end
 ---@field linear_damping number weld (read/write)
 ---@field angular_hertz number weld, Hz (read/write)
 ---@field angular_damping number weld (read/write)
+---@field reference_angle number revolute, prismatic, weld, wheel: b's relative angle that counts as 0, rad (read only)
 ---@field linear_offset rigidlab.Vec2 motor: target of b's anchor in a's frame (world when b is nil) (read/write)
 ---@field angular_offset number motor: target angle of b relative to a, rad (read/write)
 ---@field linear_velocity rigidlab.Vec2 motor: velocity target, m/s (read/write)
@@ -232,6 +233,7 @@ function ForceHandle:remove() end
 ---@field bullet? boolean default false
 ---@field enabled? boolean default true
 ---@field user_data? any any Lua value, kept with the body
+---@field awake? boolean default true; false: created asleep (a dynamic body at rest, in a world that sleeps)
 
 ---The options of a shape: body:add_shape and, for their one shape, the add_* body functions.
 ---@class rigidlab.ShapeOptions
@@ -333,6 +335,7 @@ function ForceHandle:remove() end
 ---@field enable_spring? boolean
 ---@field spring_hertz? number Hz, towards the angle at creation
 ---@field spring_damping? number damping ratio
+---@field reference_angle? number rad: b's angle relative to a that counts as 0, default the angle now
 
 ---A slider: b moves along `axis` (fixed in a; in the world when b is nil) without turning.
 ---@class rigidlab.PrismaticOptions: rigidlab.JointOptions
@@ -349,6 +352,7 @@ function ForceHandle:remove() end
 ---@field enable_spring? boolean
 ---@field spring_hertz? number Hz, towards translation 0
 ---@field spring_damping? number
+---@field reference_angle? number rad: b's angle relative to a that counts as 0, default the angle now
 
 ---The anchors keep their distance (rigid), stay within min_length..max_length (a rope is
 ---max_length alone) or are held by a spring.
@@ -374,6 +378,7 @@ function ForceHandle:remove() end
 ---@field linear_damping? number
 ---@field angular_hertz? number Hz, 0: rigid
 ---@field angular_damping? number
+---@field reference_angle? number rad: b's angle relative to a that counts as 0, default the angle now
 
 ---A car's wheel: b's anchor stays on `axis` (fixed in a); b turns freely. Without spring_hertz
 ---the wheel slides freely along the axis.
@@ -391,6 +396,7 @@ function ForceHandle:remove() end
 ---@field enable_spring? boolean
 ---@field spring_hertz? number Hz: the suspension
 ---@field spring_damping? number
+---@field reference_angle? number rad: b's angle relative to a that counts as 0, default the angle now
 
 ---Drives b towards a pose relative to a (the world when b is nil) with limited force and torque.
 ---@class rigidlab.MotorJointOptions: rigidlab.JointOptions

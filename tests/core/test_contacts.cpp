@@ -402,3 +402,33 @@ TEST_CASE("mass ratios: heavy boxes on a 1 kg box hold with sub-centimetre penet
     CHECK(std::abs(w.body(top).velocity.y()) < 1e-3);                // at rest
   }
 }
+
+// KNOWN BUG, not fixed here (marked should_fail: it fails today, and doctest reports it when it
+// starts to pass). Under RK4 a crate held by static friction on an accelerating kinematic platform
+// runs h v / 2 behind it: the contact displacement moves a body by κ h Δv with κ = ½ for RK4
+// (position_correction.cpp), as if the friction impulse were a force spread over the step, while
+// the kinematic body moves by h v_new. Their velocities agree; their positions do not (2.6 cm at
+// 3.1 m/s and 60 Hz in scripts/scenes/moving_platform.lua, which runs semi-implicit Euler, where
+// the crate rides exactly). Moving kinematic bodies by the same rule would change golden hashes.
+TEST_CASE("a crate held by friction moves with its kinematic platform under RK4" * doctest::should_fail()) {
+  World w;  // RK4, the default
+  BodyDef p;
+  p.type = BodyType::Kinematic;
+  p.shape = makeBox(3.0, 0.2);
+  p.friction = 0.8;
+  const BodyId platform = w.createBody(p);
+  BodyDef c;
+  c.shape = makeBox(0.6, 0.6);
+  c.position = Vec2(0.0, 0.4);  // resting on the platform's top face
+  c.friction = 0.8;
+  const BodyId crate = w.createBody(c);
+  const double h = 1.0 / 60.0, a = 3.0;  // m/s², below μ g = 7.8 m/s²: the crate cannot slip
+  for (int i = 1; i <= 60; ++i) {
+    w.setVelocity(platform, Vec2(a * i * h, 0.0));
+    w.step(h);
+  }
+  // The platform ran a h² Σ i = 1.53 m; the crate must have kept its place on it.
+  const double offset = w.body(crate).position().x() - w.body(platform).position().x();
+  CAPTURE(offset);  // today −h v / 2 = −0.025 m
+  CHECK(std::abs(offset) < 1e-6);
+}

@@ -403,3 +403,27 @@ TEST_CASE("updateJoint checks a motor joint's new target like createJoint does")
   w.updateJoint(id, moved);
   CHECK(w.jointState(id).world_anchor_a.x() == 2.0);
 }
+
+// KNOWN BUG, not fixed here (marked should_fail: it fails today, and doctest reports it when it
+// starts to pass). Body damping is applied to the velocity after the step's gravity was added,
+// v ← (v + h g) / (1 + h c) (integrator.cpp), and the joints and contacts are solved afterwards.
+// So a damped body held still by a joint weighs m g / (1 + h c): the pin below holds 8.915 N, not
+// 9.807 N (h c = 0.1), and a damped crank on a stalled motor stalls at the wrong angle
+// (scripts/scenes/windmill.lua); a damped box resting on the ground sinks into it by the contact
+// slop (5.6 mm here). Damping the previous velocity only, v ← v / (1 + h c) + h g, as Box2D v3
+// does, would hold m g; it changes the golden hashes of the scenes with damped bodies.
+TEST_CASE("a damped body held by a pin weighs m g" * doctest::should_fail()) {
+  World w;
+  BodyDef d;
+  d.shape = makeCircle(0.2);
+  d.mass = 1.0;
+  d.linear_damping = 6.0;
+  const BodyId disc = w.createBody(d);
+  JointDef j;
+  j.type = JointType::Revolute;
+  j.b = disc;  // a: the world
+  j.anchor_a = Vec2(0.0, 0.0);
+  const JointId pin = w.createJoint(j);
+  for (int i = 0; i < 20; ++i) w.step(1.0 / 60.0);  // (before it could fall asleep, at 0.5 s)
+  CHECK(w.jointState(pin).reaction_force.y() == Approx(-w.settings().gravity.y() * 1.0).epsilon(1e-6));
+}

@@ -471,3 +471,47 @@ TEST_CASE("bodies: a mass or inertia whose inverse is not finite is refused, nam
   CHECK(w.body(b).mass == doctest::Approx(100.0));  // unchanged
   CHECK(w.bodyCount() == 1);
 }
+
+TEST_CASE("sleeping: joints made between bodies created asleep, before their first step, leave them asleep") {
+  // A welded wall built at rest (Box2D keeps a joint between sleeping bodies asleep): the welds
+  // once woke every brick, so a wall created with awake = false was awake from its first step.
+  World w;
+  BodyDef d;
+  d.shape = makeBox(0.5, 0.25);
+  d.awake = false;
+  d.position = {0.0, 0.125};
+  const BodyId low = w.createBody(d);
+  d.position = {0.0, 0.375};
+  const BodyId high = w.createBody(d);
+  BodyDef ground;
+  ground.type = BodyType::Static;
+  ground.shape = makeBox(10.0, 1.0);
+  ground.position = {0.0, -0.5};
+  const BodyId floor = w.createBody(ground);
+  JointDef weld;
+  weld.type = JointType::Weld;
+  weld.a = low;
+  weld.b = high;
+  weld.anchor_a = Vec2(0.0, 0.25);
+  w.createJoint(weld);
+  weld.a = floor;  // a static body keeps nothing awake
+  weld.b = low;
+  weld.anchor_a = Vec2(0.0, 0.0);
+  w.createJoint(weld);
+  CHECK_FALSE(w.body(low).awake);
+  CHECK_FALSE(w.body(high).awake);
+  w.step(1.0 / 60.0);
+  CHECK(w.stats().awake_bodies == 0);
+  // Pushed, the brick wakes, and with it the one welded to it.
+  w.applyImpulse(high, {0.1, 0.0}, w.body(high).center);
+  CHECK(w.body(low).awake);
+  // Once stepped, a new joint wakes its bodies as before.
+  for (int i = 0; i < 120; ++i) w.step(1.0 / 60.0);
+  REQUIRE_FALSE(w.body(high).awake);
+  JointDef pin;
+  pin.type = JointType::Revolute;
+  pin.b = high;
+  pin.anchor_a = Vec2(0.0, 0.5);
+  w.createJoint(pin);
+  CHECK(w.body(high).awake);
+}

@@ -69,6 +69,22 @@ const Golden kGolden[] = {
     {"tests/scenes/lua_queries.lua", "b9f44982e9d25a81"},
     // sandbox mod hooks: bodies spawned by the scene's own OnMouse clicks
     {"scripts/scenes/mouse_spawn.lua", "62aee1d8f626892d"},
+// The proof scenes of the shapes and joints issues (12, 13).
+    {"scripts/scenes/breakable_wall.lua", "2babfa1c7254a9c7"},
+    {"scripts/scenes/capsule_slope.lua", "69d41bdb7ee39b4a"},
+    {"scripts/scenes/car.lua", "3f66f04efc111177"},
+    {"scripts/scenes/chain.lua", "665d3089c4e0d112"},
+    {"scripts/scenes/collision_groups.lua", "16956392f03d3ab4"},
+    {"scripts/scenes/cradle_joints.lua", "d27acf2f3a080989"},
+    {"scripts/scenes/gear_train.lua", "8b49d29f8eb4604d"},
+    {"scripts/scenes/hammer.lua", "0ffdec72fd305bfb"},
+    {"scripts/scenes/loop.lua", "9edef1f5686a2025"},
+    {"scripts/scenes/moving_platform.lua", "6d2a700896bdbb94"},
+    {"scripts/scenes/pulley.lua", "6aabbae78b85b5c3"},
+    {"scripts/scenes/ragdoll_pile.lua", "0c7b4385d57a93c9"},
+    {"scripts/scenes/rope_bridge.lua", "6d22073d9ed44c9c"},
+    {"scripts/scenes/terrain.lua", "2558167eed145d39"},
+    {"scripts/scenes/windmill.lua", "e168706baa875f4e"},
 };
 // clang-format on
 

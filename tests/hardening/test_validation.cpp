@@ -143,12 +143,13 @@ const std::vector<Option> kMovingOptions = {
     {"position", Accepts::Vector}, {"angle", Accepts::Finite}, {"velocity", Accepts::Vector},
     {"angular_velocity", Accepts::Finite}, {"name", Accepts::String}, {"linear_damping", Accepts::NonNegative},
     {"angular_damping", Accepts::NonNegative}, {"gravity_scale", Accepts::Finite}, {"fixed_rotation", Accepts::Boolean},
-    {"bullet", Accepts::Boolean}, {"enabled", Accepts::Boolean}, {"user_data", Accepts::Any}};
+    {"bullet", Accepts::Boolean}, {"enabled", Accepts::Boolean}, {"user_data", Accepts::Any}, {"awake", Accepts::Boolean}};
 const std::vector<Option> kStaticOptions = {
     {"position", Accepts::Vector}, {"angle", Accepts::Finite}, {"velocity", Accepts::Never},
     {"angular_velocity", Accepts::Zero}, {"name", Accepts::String}, {"linear_damping", Accepts::NonNegative},
     {"angular_damping", Accepts::NonNegative}, {"gravity_scale", Accepts::Finite}, {"fixed_rotation", Accepts::Boolean},
-    {"bullet", Accepts::Boolean}, {"enabled", Accepts::Boolean}, {"user_data", Accepts::Any}, {"static", Accepts::True}};
+    {"bullet", Accepts::Boolean}, {"enabled", Accepts::Boolean}, {"user_data", Accepts::Any}, {"static", Accepts::True},
+    {"awake", Accepts::Boolean}};
 // The shape options (of body:add_shape, and of the one shape of add_box, ...) but density.
 const std::vector<Option> kMaterialOptions = {
     {"restitution", Accepts::Unit}, {"friction", Accepts::NonNegative}, {"static_friction", Accepts::NonNegative},
@@ -209,15 +210,18 @@ const Function kFunctions[] = {
     {"add_revolute", "world:add_revolute{ a = nil_body, anchor = {0, 0}, lower_angle = -1e308, upper_angle = 1e308, max_motor_torque = 1, $ }",
      plus(plus(kJointOptions, kMotorSpring),
           {{"a", Accepts::Body}, {"b", Accepts::OtherBody}, {"anchor", Accepts::Vector}, {"lower_angle", Accepts::Finite},
-           {"upper_angle", Accepts::Finite}, {"max_motor_torque", Accepts::NonNegative}})},
+           {"upper_angle", Accepts::Finite}, {"max_motor_torque", Accepts::NonNegative},
+           {"reference_angle", Accepts::Finite}})},
     {"add_prismatic", "world:add_prismatic{ a = nil_body, anchor = {0, 0}, axis = {1, 0}, lower = -1e308, upper = 1e308, max_motor_force = 1, $ }",
      plus(plus(kJointOptions, kMotorSpring),
           {{"a", Accepts::Body}, {"b", Accepts::OtherBody}, {"anchor", Accepts::Vector}, {"axis", Accepts::Vector},
-           {"lower", Accepts::Finite}, {"upper", Accepts::Finite}, {"max_motor_force", Accepts::NonNegative}})},
+           {"lower", Accepts::Finite}, {"upper", Accepts::Finite}, {"max_motor_force", Accepts::NonNegative},
+           {"reference_angle", Accepts::Finite}})},
     {"add_wheel", "world:add_wheel{ a = nil_body, anchor = {0, 0}, axis = {0, 1}, lower = -1e308, upper = 1e308, max_motor_torque = 1, $ }",
      plus(plus(kJointOptions, kMotorSpring),
           {{"a", Accepts::Body}, {"b", Accepts::OtherBody}, {"anchor", Accepts::Vector}, {"axis", Accepts::Vector},
-           {"lower", Accepts::Finite}, {"upper", Accepts::Finite}, {"max_motor_torque", Accepts::NonNegative}})},
+           {"lower", Accepts::Finite}, {"upper", Accepts::Finite}, {"max_motor_torque", Accepts::NonNegative},
+           {"reference_angle", Accepts::Finite}})},
     {"add_distance", "world:add_distance{ a = nil_body, anchor_b = {0, 5}, $ }",
      plus(kJointOptions,
           {{"a", Accepts::Body}, {"anchor_a", Accepts::Vector}, {"anchor_b", Accepts::Vector}, {"length", Accepts::NonNegative},
@@ -228,7 +232,8 @@ const Function kFunctions[] = {
     {"add_weld", "world:add_weld{ a = nil_body, anchor = {0, 0}, $ }",
      plus(kJointOptions, {{"a", Accepts::Body}, {"b", Accepts::OtherBody}, {"anchor", Accepts::Vector},
                           {"linear_hertz", Accepts::NonNegative}, {"linear_damping", Accepts::NonNegative},
-                          {"angular_hertz", Accepts::NonNegative}, {"angular_damping", Accepts::NonNegative}})},
+                          {"angular_hertz", Accepts::NonNegative}, {"angular_damping", Accepts::NonNegative},
+           {"reference_angle", Accepts::Finite}})},
     {"add_motor_joint", "world:add_motor_joint{ a = nil_body, $ }",
      plus(kJointOptions, {{"a", Accepts::Body}, {"b", Accepts::OtherBody}, {"anchor", Accepts::Vector},
                           {"linear_offset", Accepts::Vector}, {"angular_offset", Accepts::Finite},

@@ -331,6 +331,46 @@ TEST_CASE("a broken joint's handle says broken after the step that broke it") {
   scene->runCheck();
 }
 
+TEST_CASE("awake = false creates a body asleep, and reference_angle is the relative angle that counts as 0") {
+  auto scene = load(R"lua(
+    function PopulateWorld(world)
+      world:add_box{ width = 20, height = 1, position = {0, -0.5}, static = true }
+      crate = world:add_box{ width = 1, height = 1, position = {0, 0.5}, awake = false }
+      awake_crate = world:add_box{ width = 1, height = 1, position = {3, 0.5} }
+      -- A rod pinned at the origin, hanging straight down (angle 0) but with reference_angle 0.5:
+      -- its joint angle reads -0.5, and a limit of [-0.1, 0.1] about the reference holds it there.
+      rod = world:add_box{ width = 0.1, height = 2, position = {10, -1}, gravity_scale = 0 }
+      pin = world:add_revolute{ a = rod, anchor = {10, 0}, reference_angle = 0.5 }
+      limited = world:add_box{ width = 0.1, height = 2, position = {20, -1}, gravity_scale = 0 }
+      world:add_revolute{ a = limited, anchor = {20, 0}, reference_angle = -0.3, lower_angle = -0.1, upper_angle = 0.1 }
+      glued = world:add_box{ width = 1, height = 0.2, position = {30, 0}, gravity_scale = 0 }
+      world:add_weld{ a = glued, anchor = {30, 0}, reference_angle = 0.2 }
+      default = world:add_revolute{ a = world:add_circle{ radius = 0.5, position = {40, 0}, angle = 0.7 }, anchor = {40, 0} }
+      assert(not crate.awake and awake_crate.awake, "awake option")
+      assert(pin.reference_angle == 0.5 and math.abs(pin.angle + 0.5) < 1e-15, "pin angle " .. pin.angle)
+      assert(default.reference_angle == 0.7 and default.angle == 0, "default reference " .. default.reference_angle)
+    end
+    function Check(world)
+      assert(not crate.awake, "the crate was woken")
+      -- The limit turns the rod from joint angle 0.3 (its angle 0, less the reference -0.3) to the
+      -- limit's 0.1, its angle -0.3 + 0.1; the weld turns its body to the glued angle.
+      assert(math.abs(limited.angle - (-0.3 + 0.1)) < 1e-3, "limited angle " .. limited.angle)
+      assert(math.abs(glued.angle - 0.2) < 1e-3, "glued angle " .. glued.angle)
+    end)lua");
+  for (int i = 0; i < 120; ++i) scene->step();
+  scene->runCheck();
+  checkMessages({
+      {"function PopulateWorld(w) w:add_box{ width = 1, height = 1, awake = 0 } end", 0,
+       "test.lua:1: add_box: awake must be true or false"},
+      {"function PopulateWorld(w) w:add_revolute{ a = w:add_circle{ radius = 1 }, anchor = {0, 0}, reference_angle = 0/0 } end", 0,
+       "test.lua:1: add_revolute: reference_angle must be"},
+      {"function PopulateWorld(w) w:add_distance{ a = w:add_circle{ radius = 1 }, anchor_b = {0, 1}, reference_angle = 1 } end", 0,
+       "test.lua:1: add_distance: unknown option 'reference_angle'"},
+      {"function PopulateWorld(w) local j = w:add_weld{ a = w:add_circle{ radius = 1 }, anchor = {0, 0} } j.reference_angle = 1 end", 0,
+       "test.lua:1: joint.reference_angle: is read-only"},
+  });
+}
+
 TEST_CASE("a Lua force that fails leaves the world as it was before the step") {
   auto scene = load(R"lua(
     function PopulateWorld(world)

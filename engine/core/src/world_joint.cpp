@@ -211,8 +211,18 @@ JointId World::createJoint(const JointDef& in) {
   for (uint32_t slot : {made.a, made.b, made.c, made.d})
     if (slot != kWorldSlot && std::find(w.body_joints[slot].begin(), w.body_joints[slot].end(), index) == w.body_joints[slot].end())
       w.body_joints[slot].push_back(index);
+  // A joint between bodies all created asleep in this step, before it runs (a welded wall built at
+  // rest), leaves them asleep, as a shape added to such a body does (createShape): the step's
+  // islands join them, and they sleep and wake together. Static bodies keep nothing awake. Any
+  // other joint wakes its bodies: what it holds may now move.
+  bool all_created_asleep = true;
   for (uint32_t slot : {made.a, made.b, made.c, made.d})
-    if (slot != kWorldSlot) w.wakeIsland(slot);
+    if (slot != kWorldSlot && !w.bodies[slot].isStatic())
+      all_created_asleep = all_created_asleep && !w.bodies[slot].awake &&
+                           w.created_asleep_before[slot] == w.step_count + 1;
+  if (!all_created_asleep)
+    for (uint32_t slot : {made.a, made.b, made.c, made.d})
+      if (slot != kWorldSlot) w.wakeIsland(slot);
   return {index, made.generation};
 }
 

@@ -38,7 +38,9 @@ inline const std::vector<std::string_view> kWorldMethods = {
 // What every function that makes a body takes (add_body takes only these).
 inline const std::vector<std::string_view> kBodyOptions = {
     "position", "angle", "velocity", "angular_velocity", "type", "static", "name", "linear_damping",
-    "angular_damping", "gravity_scale", "fixed_rotation", "bullet", "enabled", "user_data"};
+    "angular_damping", "gravity_scale", "fixed_rotation", "bullet", "enabled", "user_data",
+    // false: created asleep (BodyDef::awake)
+    "awake"};
 // The options of a shape: body:add_shape{} and, for their one shape, add_box, add_circle, ...
 inline const std::vector<std::string_view> kShapeOptions = {"density", "restitution", "friction", "static_friction",
                                                             "sensor", "category", "mask", "group", "contact_events", "hit_events", "hit_speed", "one_way", "pre_solve"};
@@ -67,18 +69,22 @@ inline const std::vector<std::string_view> kSceneOptions = {"title", "gravity", 
 inline const std::vector<std::string_view> kJointOptions = {"collide_connected", "break_force", "break_torque", "name"};
 inline const std::vector<std::string_view> kRevoluteOptions = {
     "a", "b", "anchor", "enable_limit", "lower_angle", "upper_angle", "enable_motor", "motor_speed", "max_motor_torque",
-    "enable_spring", "spring_hertz", "spring_damping"};
+    "enable_spring", "spring_hertz", "spring_damping",
+    "reference_angle"};
 inline const std::vector<std::string_view> kPrismaticOptions = {
     "a", "b", "anchor", "axis", "enable_limit", "lower", "upper", "enable_motor", "motor_speed", "max_motor_force",
-    "enable_spring", "spring_hertz", "spring_damping"};
+    "enable_spring", "spring_hertz", "spring_damping",
+    "reference_angle"};
 inline const std::vector<std::string_view> kDistanceOptions = {
     "a", "b", "anchor_a", "anchor_b", "length", "enable_limit", "min_length", "max_length", "enable_spring",
     "spring_hertz", "spring_damping", "max_spring_force"};
 inline const std::vector<std::string_view> kWeldOptions = {"a", "b", "anchor", "linear_hertz", "linear_damping",
-                                                           "angular_hertz", "angular_damping"};
+                                                           "angular_hertz", "angular_damping",
+                                                           "reference_angle"};
 inline const std::vector<std::string_view> kWheelOptions = {
     "a", "b", "anchor", "axis", "enable_limit", "lower", "upper", "enable_motor", "motor_speed", "max_motor_torque",
-    "enable_spring", "spring_hertz", "spring_damping"};
+    "enable_spring", "spring_hertz", "spring_damping",
+    "reference_angle"};
 inline const std::vector<std::string_view> kMotorJointOptions = {
     "a", "b", "anchor", "linear_offset", "angular_offset", "linear_velocity", "angular_velocity", "max_force",
     "max_torque", "motor_hertz", "motor_damping"};
@@ -95,7 +101,8 @@ inline const std::vector<std::string_view> kJointReadable = {
 inline const std::vector<std::string_view> kJointWritable = {"name", "collide_connected", "break_force",
                                                              "break_torque"};
 inline const std::vector<std::string_view> kJointReadOnly = {"length", "ground_a", "ground_b", "ratio", "joint_a",
-                                                             "joint_b", "set_limits"};
+                                                             "joint_b", "set_limits",
+                                                             "reference_angle"};
 
 // The option lists of the joint functions, in JointType order (revolute ... gear).
 inline const std::vector<const std::vector<std::string_view>*> kJointKindOptions = {

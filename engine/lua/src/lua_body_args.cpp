@@ -118,6 +118,7 @@ BodyDef readBodyDef(const Options& o, BodyType fallback) {
   d.fixed_rotation = o.boolean("fixed_rotation", false);
   d.bullet = o.boolean("bullet", false);
   d.enabled = o.boolean("enabled", true);
+  d.awake = o.boolean("awake", true);
   d.name = o.string("name", "", kNameBytes);
   return d;
 }

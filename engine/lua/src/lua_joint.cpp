@@ -181,6 +181,13 @@ int jointIndex(lua_State* L) {
     jointFieldValue(L, *f, def).push(L);
   } else {
     const JointState s = w.jointState(self.id);
+    if (k == "reference_angle") {
+      // As given, or else the relative angle at creation: b's angle relative to a now, less the
+      // joint angle counted from it (the core keeps no other record of it).
+      const auto angle = [&](BodyId id) { return id.isNull() ? 0.0 : w.body(id).angle; };
+      lua_pushnumber(L, def.reference_angle ? *def.reference_angle : angle(def.b) - angle(def.a) - s.angle);
+      return 1;
+    }
     // The core's a is the world for a joint pinned to it: its anchors are the other way round.
     const Vec2& on_a = pinned ? s.world_anchor_b : s.world_anchor_a;
     const Vec2& on_b = pinned ? s.world_anchor_a : s.world_anchor_b;

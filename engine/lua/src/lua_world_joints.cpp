@@ -107,6 +107,9 @@ int addJoint(lua_State* L, JointType type) {
         if (!o.has(ground)) o.fail(ground, "is required: the fixed world point the rope runs over");
   }
   readTunables(o, d);
+  // The relative angle that counts as 0 (limits, springs, the weld's glued angle): a ragdoll's
+  // bones built straight but meant to rest bent. Only the kinds whose options list it accept it.
+  if (o.has("reference_angle")) d.reference_angle = o.number("reference_angle");
   if (type == JointType::Revolute) requireTogether(o, "lower_angle", "upper_angle", "an angle limit has two bounds");
   if (type == JointType::Prismatic || type == JointType::Wheel)
     requireTogether(o, "lower", "upper", "a limit has two bounds");
