@@ -592,6 +592,10 @@ function Draw:text(position, text, color) end
 ---@field camera? {center?: rigidlab.VecLike, height?: number} initial sandbox view, metres
 ---@field memory_limit? number MiB the scene's Lua may allocate, at most the host's cap (256 by default)
 ---@field expect_incidents? boolean default false: bodies frozen by the NaN firewall or a non-finite energy are expected (a headless run then still exits with 0, not 3)
+---@field golden? string rigidlab test: name of the recorded trajectory golden/<name>.txt beside the scene that a run must reproduce (record it with rigidlab test --update)
+---@field golden_every? integer rigidlab test: steps between two samples of the golden trajectory, default 10
+---@field golden_tolerance? number rigidlab test: largest difference allowed in any golden value, default 0 (bit for bit)
+---@field skip? string rigidlab test: why the scene is not run (reported as skipped)
 
 ---@type rigidlab.SceneSettings
 scene = {}

@@ -56,6 +56,13 @@ struct SceneSettings {
   // `scene.expect_incidents = true`: bodies frozen by the NaN firewall or a non-finite energy are
   // what the scene is about (a test of the firewall), so a headless run still exits with 0.
   bool expect_incidents = false;
+  // rigidlab test (docs/testing.md): `golden` names the recorded trajectory
+  // (<scene dir>/golden/<golden>.txt) the run must reproduce, sampled every `golden_every` steps,
+  // each value within `golden_tolerance` (0: bit for bit); `skip` is why the scene is not run.
+  std::string golden;  // empty: none
+  int golden_every = 10;
+  double golden_tolerance = 0.0;
+  std::optional<std::string> skip;
 };
 
 struct SceneOptions {
