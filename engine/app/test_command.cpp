@@ -221,10 +221,11 @@ class LiveLine {
     std::fflush(stdout);
   }
   void show(const std::string& text) {
-    if (!enabled_) return;
+    if (!enabled_ || (shown_ && text == text_)) return;
     std::fprintf(stdout, "\r\033[K%s", text.c_str());
     std::fflush(stdout);
     shown_ = true;
+    text_ = text;
   }
   void clear() {
     if (shown_) std::fputs("\r\033[K", stdout);
@@ -234,6 +235,7 @@ class LiveLine {
  private:
   bool enabled_;
   bool shown_ = false;
+  std::string text_;  // what the line shows
 };
 
 void writeAll(int fd, const std::string& data) {
@@ -376,6 +378,7 @@ std::vector<TestResult> runAll(const std::vector<std::string>& scenes, const Tes
     int wait_ms = 500;
     if (o.timeout > 0)
       for (const Child& c : running) {
+        if (c.killed) continue;  // its pipes close as it dies: poll wakes then
         const double left = o.timeout - std::chrono::duration<double>(Clock::now() - c.start).count();
         wait_ms = std::clamp(static_cast<int>(left * 1000.0) + 1, 0, wait_ms);
       }

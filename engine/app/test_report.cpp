@@ -1,6 +1,7 @@
 #include "test_report.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 
@@ -35,11 +36,11 @@ std::vector<std::string> splitLines(const std::string& text) {
 }
 
 // Text as XML 1.0 character data (or an attribute value, where line breaks and tabs must be
-// character references to survive): valid UTF-8, the special characters escaped, and the control
-// characters XML cannot hold at all shown as \xNN.
+// character references to survive): shown as the runners show a scene's text (valid UTF-8, the
+// control characters XML cannot hold as \xHH), with XML's special characters escaped.
 std::string xml(const std::string& text, bool attribute = true) {
   std::string out;
-  for (unsigned char c : lua::validUtf8(text)) {
+  for (char c : lua::displayText(text, SIZE_MAX, "\n\t\r")) {
     switch (c) {
       case '&': out += "&amp;"; break;
       case '<': out += "&lt;"; break;
@@ -49,14 +50,7 @@ std::string xml(const std::string& text, bool attribute = true) {
       case '\n': out += attribute ? "&#10;" : "\n"; break;
       case '\t': out += attribute ? "&#9;" : "\t"; break;
       case '\r': out += attribute ? "&#13;" : "\r"; break;
-      default:
-        if (c < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\x%02x", c);
-          out += buf;
-        } else {
-          out += static_cast<char>(c);
-        }
+      default: out += c;
     }
   }
   return out;

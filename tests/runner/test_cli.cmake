@@ -7,30 +7,9 @@ cmake_policy(VERSION 3.20)
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 file(COPY ${DIR}/suite DESTINATION ${WORK})
-set(suite suite)  # relative to WORK, where every command runs: the paths printed are suite/...
-
-function(run expected_status)
-  execute_process(COMMAND ${RIGIDLAB} ${ARGN} WORKING_DIRECTORY ${WORK} RESULT_VARIABLE status OUTPUT_VARIABLE out
-                  ERROR_VARIABLE err)
-  if(NOT status EQUAL expected_status)
-    message(FATAL_ERROR "rigidlab ${ARGN}: exit ${status}, expected ${expected_status}\nstdout: ${out}\nstderr: ${err}")
-  endif()
-  set(out "${out}" PARENT_SCOPE)
-  set(err "${err}" PARENT_SCOPE)
-endfunction()
-
-# `text` must match the regular expression.
-function(expect_match what text regex)
-  if(NOT "${text}" MATCHES "${regex}")
-    message(FATAL_ERROR "${what}: no match for '${regex}' in:\n${text}")
-  endif()
-endfunction()
-
-function(expect_equal what actual expected)
-  if(NOT "${actual}" STREQUAL "${expected}")
-    message(FATAL_ERROR "${what}: got '${actual}', expected '${expected}'")
-  endif()
-endfunction()
+set(suite suite)
+set(CLI_DIRECTORY ${WORK})  # where every command runs: the paths printed are suite/...
+include(${CMAKE_CURRENT_LIST_DIR}/../cli_checks.cmake)
 
 function(count_matches var text regex)
   string(REGEX MATCHALL "${regex}" found "${text}")
@@ -188,19 +167,18 @@ string(REPLACE "golden_every = 5" "golden_every = 5, golden_tolerance = 1e-6" to
 file(WRITE ${WORK}/suite/golden_ball.lua "${tolerant}")
 run(0 test ${suite} --filter golden)
 
-# The scene fields are validated where the scene table is read.
-file(WRITE ${WORK}/bad_golden.lua "scene = { golden = '../up' }\nfunction PopulateWorld(world) end\n")
-run(1 check ${WORK}/bad_golden.lua)
-expect_match("golden name" "${err}" "bad_golden.lua:1: scene: golden must be a file name of letters, digits")
-file(WRITE ${WORK}/bad_every.lua "scene = { golden_every = 5 }\nfunction PopulateWorld(world) end\n")
-run(1 check ${WORK}/bad_every.lua)
-expect_match("golden_every alone" "${err}" "bad_every.lua:1: scene: golden_every needs scene.golden")
-file(WRITE ${WORK}/bad_tolerance.lua "scene = { golden = 'g', golden_tolerance = -1 }\nfunction PopulateWorld(world) end\n")
-run(1 check ${WORK}/bad_tolerance.lua)
-expect_match("negative tolerance" "${err}" "bad_tolerance.lua:1: scene: golden_tolerance must be >= 0")
-file(WRITE ${WORK}/bad_typo.lua "scene = { goldn = 'g' }\nfunction PopulateWorld(world) end\n")
-run(1 check ${WORK}/bad_typo.lua)
-expect_match("typo" "${err}" "unknown option 'goldn' \\(did you mean 'golden'\\?\\)")
+# The scene fields are validated where the scene table is read: `rigidlab check` on a scene whose
+# table is `settings` fails with a message that matches `regex`.
+function(expect_scene_error name settings regex)
+  file(WRITE ${WORK}/${name}.lua "scene = { ${settings} }\nfunction PopulateWorld(world) end\n")
+  run(1 check ${WORK}/${name}.lua)
+  expect_match("scene = { ${settings} }" "${err}" "${name}.lua:1: scene: ${regex}")
+endfunction()
+expect_scene_error(bad_golden "golden = '../up'" "golden must be a file name of letters, digits")
+expect_scene_error(bad_every "golden_every = 5" "golden_every needs scene.golden")
+expect_scene_error(bad_tolerance "golden = 'g', golden_tolerance = -1" "golden_tolerance must be >= 0")
+expect_scene_error(bad_typo "goldn = 'g'" "unknown option 'goldn' \\(did you mean 'golden'\\?\\)")
+expect_scene_error(bad_skip "skip = true" "skip must be a string")
 
 # Usage errors.
 run(0 test --help)
