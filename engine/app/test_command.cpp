@@ -19,6 +19,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <string_view>
 #include <tuple>
 #include <vector>
 
@@ -133,6 +134,11 @@ TestOptions parseOptions(const std::vector<std::string>& argv, bool& help) {
   return o;
 }
 
+std::string_view trimmed(std::string_view s) {
+  s.remove_prefix(std::min(s.find_first_not_of(" \t"), s.size()));
+  return s;
+}
+
 // A scene to test: a global Check is defined at the start of a line (`function Check(` or
 // `Check = function`), as scenes write it; a file of editor annotations (---@meta) is not one.
 bool definesCheck(const fs::path& file) {
@@ -145,22 +151,14 @@ bool definesCheck(const fs::path& file) {
   if (text.starts_with("---@meta")) return false;
   for (size_t start = 0; start < text.size();) {
     const size_t end = std::min(text.find('\n', start), text.size());
-    std::string_view line(text.data() + start, end - start);
+    const std::string_view line = trimmed(std::string_view(text).substr(start, end - start));
     start = end + 1;
-    line.remove_prefix(std::min(line.find_first_not_of(" \t"), line.size()));
-    std::string_view rest;
-    if (line.starts_with("function ")) {
-      rest = line.substr(9);
-      rest.remove_prefix(std::min(rest.find_first_not_of(" \t"), rest.size()));
-      if (rest.starts_with("Check") && rest.substr(5).find_first_not_of(" \t") != std::string_view::npos &&
-          rest[rest.find_first_not_of(" \t", 5)] == '(')
-        return true;
+    if (line.starts_with("function ") || line.starts_with("function\t")) {
+      const std::string_view name = trimmed(line.substr(8));
+      if (name.starts_with("Check") && trimmed(name.substr(5)).starts_with("(")) return true;
     } else if (line.starts_with("Check")) {
-      rest = line.substr(5);
-      rest.remove_prefix(std::min(rest.find_first_not_of(" \t"), rest.size()));
-      if (rest.starts_with("=") && rest.substr(1).find_first_not_of(" \t") != std::string_view::npos &&
-          rest.substr(rest.find_first_not_of(" \t", 1)).starts_with("function"))
-        return true;
+      const std::string_view assigned = trimmed(line.substr(5));
+      if (assigned.starts_with("=") && trimmed(assigned.substr(1)).starts_with("function")) return true;
     }
   }
   return false;
