@@ -5,12 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 
 #include "rigidlab/lua/scene.h"
+#include "text_file.h"
 
 namespace rigidlab::app::accuracy {
 
@@ -144,14 +143,6 @@ class ProblemScript {
 };
 
 namespace {
-
-std::string readFile(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw std::runtime_error(file.string() + ": cannot read the file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 // Typed reads of accuracy.<field> with messages naming the field and the bad value.
 class Fields {

@@ -30,6 +30,8 @@ usage:
                            error against run time for every integrator and step size
   rigidlab stability [--out DIR]
                            stiff and extreme cases: where the simulation stays stable
+  rigidlab test [PATH...] [-j N] [--junit FILE] [--shard K/N] [--filter PATTERN] [--update]
+                           run every scene that defines Check, in parallel; golden trajectories
   rigidlab help            this text; `rigidlab COMMAND --help` for a command's options
 
 Exit status: 0 success, 1 scene error or failed check, 2 usage error, 3 a run that blew up
@@ -83,6 +85,7 @@ int dispatch(const std::vector<std::string>& argv) {
   if (command == "bench") return benchCommand(rest);
   if (command == "accuracy") return accuracyCommand(rest);
   if (command == "stability") return stabilityCommand(rest);
+  if (command == "test") return testCommand(rest);
   if (command.starts_with("-") || command.ends_with(".lua")) return sandbox(argv);
   throw UsageError("unknown command '" + command + "'");
 }

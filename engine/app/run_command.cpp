@@ -1,13 +1,14 @@
 // rigidlab run / rigidlab check: headless runs of a scene (the runner of scripted regression scenes).
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <memory>
 
 #include "cli.h"
 #include "commands.h"
+#include "headless_run.h"
 #include "report.h"
 #include "rigidlab/error.h"
 #include "rigidlab/lua/scene.h"
@@ -43,10 +44,6 @@ NaN firewall froze a body or the energy became non-finite (listed as "incidents"
 and the JSON), unless the scene sets scene.expect_incidents = true.
 )";
 
-// The most steps one run may take (README "Security"): about 10 s of an empty world's steps, and
-// 46 hours of simulated time at 1/60 s. dt = 1e-12 with --time 1 would otherwise ask for 1e12.
-constexpr long kMaxRunSteps = 10000000;
-
 constexpr const char* kCheckHelp = R"(usage: rigidlab check SCENE.lua
 
 Loads the scene and runs PopulateWorld without simulating: reports the first problem (syntax,
@@ -58,7 +55,7 @@ std::unique_ptr<lua::Scene> loadOrReport(const std::string& path) {
   try {
     return lua::Scene::loadFile(path);
   } catch (const lua::SceneError& e) {
-    std::fprintf(stderr, "%s\n", lua::displayText(e.what(), lua::kMessageBytes, "\n\t").c_str());
+    std::fprintf(stderr, "%s\n", sceneErrorText(e).c_str());
   }
   return nullptr;
 }
@@ -118,27 +115,11 @@ int runCommand(const std::vector<std::string>& argv) {
   if (integrator) world.setIntegrator(*integrator);
   if (iterations) world.setIterations(static_cast<int>(std::min(*iterations, 10000L)));
 
-  const double h = scene->settings().dt;
-  long full_steps;
-  double last = 0.0;  // length of a final partial step, if any
-  // Refused before anything is converted to an integer: total / h can be 1e300 or infinite.
-  const auto refuse = [&](const std::string& what) {
-    std::fprintf(stderr, "run: %s, more than the limit of %ld steps per run; use a larger dt or a shorter run\n",
-                 what.c_str(), kMaxRunSteps);
+  std::string refused;
+  const std::optional<RunLength> length = runLength(*scene, time, steps, refused);
+  if (!length) {
+    std::fprintf(stderr, "run: %s\n", refused.c_str());
     return time || steps || dt ? kExitUsage : kExitSceneError;  // the command line's or the scene's settings
-  };
-  if (steps) {
-    if (*steps > kMaxRunSteps) return refuse("--steps " + std::to_string(*steps) + " asks for " + std::to_string(*steps) + " steps");
-    full_steps = *steps;
-  } else {
-    const double total = time.value_or(scene->settings().duration);
-    const double count = std::floor(total / h + 1e-9);
-    char what[160];
-    std::snprintf(what, sizeof what, "reaching t = %g s with steps of dt = %g s takes %.3g steps", total, h, count);
-    if (!(count <= static_cast<double>(kMaxRunSteps))) return refuse(what);
-    full_steps = static_cast<long>(count);
-    last = total - static_cast<double>(full_steps) * h;
-    if (last <= 1e-9 * h) last = 0.0;
   }
 
   std::unique_ptr<Trace> trace;
@@ -152,43 +133,22 @@ int runCommand(const std::vector<std::string>& argv) {
 
   RunInfo info;
   info.expect_incidents = scene->settings().expect_incidents;
-  const auto start = std::chrono::steady_clock::now();
   try {
     Progress progress(!json && !args.flag("quiet"));
-    const double end_time = world.time() + static_cast<double>(full_steps) * h + last;
-    const long total_steps = full_steps + (last > 0 ? 1 : 0);
-    size_t reported = 0;
-    for (long i = 0; i < total_steps; ++i) {
-      scene->step(i < full_steps ? h : last);
-      ++info.steps;
-      for (; reported < world.incidents().size(); ++reported)
-        std::fprintf(stderr, "warning: %s\n", lua::displayText(world.incidents()[reported].message(), lua::kMessageBytes).c_str());
-      if (info.energy_blowup_step == 0) {
-        const double kinetic = world.kineticEnergy(), potential = world.potentialEnergy();
-        if (!std::isfinite(kinetic) || !std::isfinite(potential)) {
-          info.energy_blowup_step = world.stepCount();
-          info.energy_blowup_time = world.time();
-          info.blowup_kinetic = kinetic;
-          info.blowup_potential = potential;
-          std::fprintf(stderr, "warning: %s\n", incidents(world, info).back().c_str());
-        }
-      }
-      if (trace && (info.steps % trace_every == 0 || info.steps == total_steps)) trace->write(world);
+    const double end_time =
+        world.time() + static_cast<double>(length->full_steps) * scene->settings().dt + length->last;
+    stepScene(*scene, *length, info, [&] {
+      if (trace && (info.steps % trace_every == 0 || info.steps == length->total())) trace->write(world);
       progress.update(world.time(), end_time);
-    }
+    });
   } catch (const lua::SceneError& e) {
-    std::fprintf(stderr, "%s\n", lua::displayText(e.what(), lua::kMessageBytes, "\n\t").c_str());
+    std::fprintf(stderr, "%s\n", sceneErrorText(e).c_str());
     return kExitSceneError;
   }
-  info.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 
   int status = kExitOk;
-  info.check = scene->hasCheck() ? "passed" : "none";
-  try {
-    scene->runCheck();
-  } catch (const lua::SceneError& e) {
-    std::fprintf(stderr, "%s\n", lua::displayText(e.what(), lua::kMessageBytes, "\n\t").c_str());
-    info.check = "failed";
+  if (const auto failure = runCheck(*scene, info)) {
+    std::fprintf(stderr, "%s\n", failure->c_str());
     status = kExitSceneError;
   }
   if (status == kExitOk && !info.expect_incidents && !incidents(world, info).empty()) status = kExitIncidents;

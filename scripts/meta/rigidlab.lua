@@ -652,6 +652,10 @@ function Draw:capsule(a, b, radius, color, fill) end
 ---@field expect_incidents? boolean default false: bodies frozen by the NaN firewall or a non-finite energy are expected (a headless run then still exits with 0, not 3)
 ---@field keys? string[] keys the scene takes from the sandbox's bindings while it runs (OnKey gets them), e.g. {"space", "r"}
 ---@field controls? rigidlab.ControlOptions[] sliders and buttons in the sandbox's Controls panel; kept across hot reloads; headless, sliders keep their `value`
+---@field golden? string rigidlab test: name of the recorded trajectory golden/<name>.txt beside the scene that a run must reproduce (record it with rigidlab test --update)
+---@field golden_every? integer rigidlab test: steps between two samples of the golden trajectory, default 10
+---@field golden_tolerance? number rigidlab test: largest difference allowed in any golden value, default 0 (bit for bit)
+---@field skip? string rigidlab test: why the scene is not run (reported as skipped)
 
 ---@type rigidlab.SceneSettings
 scene = {}

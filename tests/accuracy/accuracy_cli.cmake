@@ -4,21 +4,7 @@
 # stability report's JSON.
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
-
-function(run expected_status)
-  execute_process(COMMAND ${RIGIDLAB} ${ARGN} RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT status EQUAL expected_status)
-    message(FATAL_ERROR "rigidlab ${ARGN}: exit ${status}, expected ${expected_status}\nstdout: ${out}\nstderr: ${err}")
-  endif()
-  set(out "${out}" PARENT_SCOPE)
-  set(err "${err}" PARENT_SCOPE)
-endfunction()
-
-function(expect_match what text regex)
-  if(NOT "${text}" MATCHES "${regex}")
-    message(FATAL_ERROR "${what}: '${regex}' not found in:\n${text}")
-  endif()
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/../cli_checks.cmake)
 
 run(0 accuracy --help)
 expect_match("accuracy --help" "${out}" "usage: rigidlab accuracy")

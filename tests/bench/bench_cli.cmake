@@ -3,14 +3,7 @@
 # counts, the scene's own edits between steps), runs it, and reports the figures the comparison
 # reads; and its command line refuses what it cannot do. Two steps per scene: a check of the
 # scenes, not a benchmark.
-function(run expected_status)
-  execute_process(COMMAND ${RIGIDLAB} ${ARGN} RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT status EQUAL expected_status)
-    message(FATAL_ERROR "rigidlab ${ARGN}: exit ${status}, expected ${expected_status}\nstdout: ${out}\nstderr: ${err}")
-  endif()
-  set(out "${out}" PARENT_SCOPE)
-  set(err "${err}" PARENT_SCOPE)
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/../cli_checks.cmake)
 
 function(expect_metric scene steps key expected)
   run(0 bench ${scene} --steps ${steps} --reps 1 --json)

@@ -2,21 +2,7 @@
 # Checks the headless runner's command line against its --help.
 file(MAKE_DIRECTORY ${WORK})
 set(scene ${DIR}/runner_scene.lua)
-
-function(run expected_status)
-  execute_process(COMMAND ${RIGIDLAB} ${ARGN} RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT status EQUAL expected_status)
-    message(FATAL_ERROR "rigidlab ${ARGN}: exit ${status}, expected ${expected_status}\nstdout: ${out}\nstderr: ${err}")
-  endif()
-  set(out "${out}" PARENT_SCOPE)
-  set(err "${err}" PARENT_SCOPE)
-endfunction()
-
-function(expect_equal what actual expected)
-  if(NOT "${actual}" STREQUAL "${expected}")
-    message(FATAL_ERROR "${what}: got '${actual}', expected '${expected}'")
-  endif()
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/../cli_checks.cmake)
 
 # --json: exactly one JSON document; numbers with 17 significant digits.
 run(0 run ${scene} --json)

@@ -63,7 +63,9 @@ inline const std::vector<std::string_view> kDamperOptions = {"body", "coefficien
 inline const std::vector<std::string_view> kForceOptions = {"body", "evaluate", "duration", "point", "other"};
 inline const std::vector<std::string_view> kSceneOptions = {"title", "gravity", "dt", "integrator", "solver",
                                                             "iterations", "substeps", "sleeping", "duration",
-                                                            "camera", "memory_limit", "expect_incidents"};
+                                                            "camera", "memory_limit", "expect_incidents",
+                                                            // rigidlab test (docs/testing.md)
+                                                            "golden", "golden_every", "golden_tolerance", "skip"};
 
 // Joints: every add_* joint function takes kJointOptions and its own.
 inline const std::vector<std::string_view> kJointOptions = {"collide_connected", "break_force", "break_torque", "name"};

@@ -1,5 +1,6 @@
 // Loading a scene and running its hooks (origin.md §3 and §11: PopulateWorld builds the model).
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -39,6 +40,27 @@ std::string sceneStatementLine(std::string_view source, const std::string& at) {
       return at.substr(0, colon) + ":" + std::to_string(line) + ": ";
   }
   return at;
+}
+
+// The fields `rigidlab test` reads (docs/testing.md). The golden name becomes a file name beside
+// the scene, so it may not climb out of the golden/ folder or hide itself.
+void readTestSettings(const Options& o, SceneSettings& settings) {
+  if (o.has("golden")) {
+    const std::string name = o.string("golden", std::nullopt, 128);
+    const bool plain = !name.empty() && name[0] != '.' && std::all_of(name.begin(), name.end(), [](char c) {
+      return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+    });
+    if (!plain)
+      o.fail("golden", "must be a file name of letters, digits, '_', '-' and '.' (not starting with '.'), got " +
+                           describe(o.get("golden")));
+    settings.golden = name;
+  }
+  for (const std::string_view field : {"golden_every", "golden_tolerance"})
+    if (o.has(field) && settings.golden.empty())
+      o.fail(field, "needs scene.golden (the name of the recorded trajectory)");
+  settings.golden_every = o.integer("golden_every", 1, 1000000, settings.golden_every);
+  settings.golden_tolerance = o.nonNegative("golden_tolerance", settings.golden_tolerance);
+  if (o.has("skip")) settings.skip = o.string("skip", std::nullopt, kTitleBytes);
 }
 
 // Reads the optional global `scene` table (inside ScriptHost::run). Errors read
@@ -86,6 +108,7 @@ void readSettings(Scene::Impl& s, WorldDef& def, const std::string& at) {
     def.substeps = o.integer("substeps", 1, 64, def.substeps);
     def.sleeping = o.boolean("sleeping", def.sleeping);
     s.settings.expect_incidents = o.boolean("expect_incidents", false);
+    readTestSettings(o, s.settings);
     if (o.has("camera")) {
       const Options c(L, "scene.camera", o.get("camera"), {"center", "height"});
       if (c.has("center")) s.settings.camera_center = c.vec("center");

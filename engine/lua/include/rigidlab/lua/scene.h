@@ -73,6 +73,14 @@ struct SceneSettings {
     double min = 0.0, max = 1.0, value = 0.0;  // a slider's range and default value
   };
   std::vector<Control> controls;
+
+  // rigidlab test (docs/testing.md): `golden` names the recorded trajectory
+  // (<scene dir>/golden/<golden>.txt) the run must reproduce, sampled every `golden_every` steps,
+  // each value within `golden_tolerance` (0: bit for bit); `skip` is why the scene is not run.
+  std::string golden;  // empty: none
+  int golden_every = 10;
+  double golden_tolerance = 0.0;
+  std::optional<std::string> skip;
 };
 
 // A mouse event of the sandbox as OnMouse(world, event) receives it (Scene::onMouse).
