@@ -311,6 +311,7 @@ TEST_CASE("continuous collision: fast bodies do not tunnel through a thin static
     d.angular_velocity = c.circle ? 0.0 : 30.0;
     d.restitution = c.restitution;
     const BodyId bullet = w.createBody(d);
+    const double energy = w.kineticEnergy();
     for (int i = 0; i < 60; ++i) {
       w.step(1.0 / 60.0);
       REQUIRE(w.body(bullet).position().x() < 4.95);  // never beyond the near face
@@ -320,19 +321,32 @@ TEST_CASE("continuous collision: fast bodies do not tunnel through a thin static
     } else if (c.circle) {
       CHECK(std::abs(w.body(bullet).velocity.x()) < 1e-6);  // stopped at the wall
     } else {
-      CHECK(w.body(bullet).velocity.x() <= 0.0);  // a spinning box may be thrown back by its spin
-      CHECK(std::abs(w.body(bullet).velocity.x()) < 0.05 * c.speed);
+      // A spinning box may be thrown back by its spin (the first corner sticks, e = 0 with
+      // friction: 400 → −72 m/s, spinning at −339 rad/s), but the impacts only take energy.
+      CHECK(w.body(bullet).velocity.x() <= 0.0);
+      CHECK(w.kineticEnergy() < 0.05 * energy);
     }
   }
-  // Without it the 100 m/s disc passes: 1.67 m per step against a 0.1 m wall.
-  World w;
-  w.setGravity(Vec2::Zero());
-  w.setContinuous(false);
-  test::addBox(w, 0.1, 10, {5.0, 0.0}, true);
-  const BodyId disc = test::addCircle(w, 0.1, {0.8, 0.0});
-  w.setVelocity(disc, {100.0, 0.0});
-  for (int i = 0; i < 10; ++i) w.step(1.0 / 60.0);
-  CHECK(w.body(disc).position().x() > 5.0);
+  // The impact search alone (continuous collision off) finds the wall too; with impacts handled
+  // once per step and no continuous collision the 100 m/s disc passes: 1.67 m per step against a
+  // 0.1 m wall.
+  for (const ImpactHandling impacts : {ImpactHandling::Located, ImpactHandling::PerStep}) {
+    CAPTURE(impactHandlingName(impacts));
+    World w;
+    w.setGravity(Vec2::Zero());
+    w.setContinuous(false);
+    w.setImpacts(impacts);
+    test::addBox(w, 0.1, 10, {5.0, 0.0}, true);
+    const BodyId disc = test::addCircle(w, 0.1, {0.8, 0.0});
+    w.setVelocity(disc, {100.0, 0.0});
+    for (int i = 0; i < 10; ++i) w.step(1.0 / 60.0);
+    if (impacts == ImpactHandling::Located) {
+      CHECK(w.body(disc).position().x() < 4.95);
+      CHECK(std::abs(w.body(disc).velocity.x()) < 1e-6);
+    } else {
+      CHECK(w.body(disc).position().x() > 5.0);
+    }
+  }
 }
 
 TEST_CASE("mass ratios: heavy boxes on a 1 kg box hold with sub-centimetre penetration (accuracy.md S7)") {

@@ -10,9 +10,16 @@
 //   |Δc| + |Δθ|·extent   per unit of t,
 // so t may advance by d over that bound without missing contact. Once the shapes are within a
 // fraction of the contact margin, the body is put back there for the rest of the step, keeping its
-// velocity: the narrow phase then finds the contact (speculatively) and the solver stops or
-// bounces the body right away (contact_solver.cpp: the impact happens now, not next step). The
-// body loses the part of the step after the impact (as Box2D 2.4's does).
+// velocity as it was at that moment (the start and end velocities interpolated like the position:
+// exact under a constant force); the narrow phase then finds the contact (speculatively) and the
+// solver stops or bounces the body right away (contact_solver.cpp: the impact happens now, not next
+// step). The body loses the part of the step after the impact (as Box2D 2.4's does). Keeping the
+// end-of-step velocity there instead put the body on the surface with the speed it would have had
+// a fraction of a step later: an elastic ball (r = 0.1 m) dropped 1 m gained 7 % of its energy per
+// bounce with RK4 at dt = 1/30.
+// Bodies whose impacts are located (event_location.cpp) are not swept against static bodies: the
+// search along their path already finds the first contact; located bullets are still swept against
+// the moving bodies that are not located.
 // Bullets (BodyDef::bullet) are also swept against moving bodies that are not bullets, where the
 // integration left them, so that a fast small body stops at a thin moving one.
 #include <algorithm>
@@ -55,8 +62,9 @@ void sweepFastBodies(WorldImpl& w) {
   }
   if (w.statics.empty() && w.ccd_movers.empty()) return;
 
+  const auto located = [&](uint32_t slot) { return slot < w.impact.located.size() && w.impact.located[slot]; };
   for (uint32_t i = 0; i < n; ++i) {
-    if (!w.isActive(i)) continue;
+    if (!w.isActive(i) || (located(i) && !w.bodies[i].bullet)) continue;
     Body& b = w.bodies[i];
     // A body's thinnest and widest shapes bound what it can skip and how far its points travel.
     const double inradius = b.min_inradius, extent = b.max_extent;
@@ -74,6 +82,7 @@ void sweepFastBodies(WorldImpl& w) {
         const BodyShape& wall = w.shapes[s];
         if (wall.body.index == i || !shouldCollide(mover.filter, wall.filter)) continue;
         const Body& wall_body = w.bodies[wall.body.index];
+        if (located(wall.body.index)) continue;  // two located bodies: their impacts are located
         if (!swept.overlaps(computeAabb(wall.geometry, wall_body.xf))) continue;
         if (wall_body.isDynamic() && w.jointBlocksCollision(i, wall.body.index)) continue;
         const double d0 = separationLowerBound(mover.geometry, start, wall.geometry, wall_body.xf);
@@ -98,7 +107,7 @@ void sweepFastBodies(WorldImpl& w) {
       const Aabb end = computeAabb(mover.geometry, b.xf);
       swept.lower = swept.lower.cwiseMin(end.lower);
       swept.upper = swept.upper.cwiseMax(end.upper);
-      sweep(mover, swept, w.statics);
+      if (!located(i)) sweep(mover, swept, w.statics);
       if (b.bullet) sweep(mover, swept, w.ccd_movers);
     }
     if (first < 1.0) {
@@ -106,6 +115,8 @@ void sweepFastBodies(WorldImpl& w) {
       w.ccd_hit[i] = 1;
       b.center = c0 + first * (c1 - c0);
       b.angle = a0 + first * (a1 - a0);
+      b.velocity = w.start_velocity[i] + first * (b.velocity - w.start_velocity[i]);
+      b.angular_velocity = w.start_angular_velocity[i] + first * (b.angular_velocity - w.start_angular_velocity[i]);
       WorldImpl::syncTransform(b);
     }
   }

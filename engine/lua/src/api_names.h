@@ -32,6 +32,7 @@ inline const std::vector<std::string_view> kDamperOptions = {"body", "coefficien
 inline const std::vector<std::string_view> kForceOptions = {"body", "evaluate", "duration", "point", "other"};
 inline const std::vector<std::string_view> kSceneOptions = {"title", "gravity", "dt", "integrator", "solver",
                                                             "iterations", "substeps", "sleeping", "duration",
-                                                            "camera", "memory_limit", "expect_incidents"};
+                                                            "camera", "memory_limit", "expect_incidents",
+                                                            "impacts"};
 
 }  // namespace rigidlab::lua::api
