@@ -328,7 +328,8 @@ std::string benchMetrics(const BenchScene& scene, BenchWorld& w, const BenchTrac
 }
 
 const std::vector<BenchScene>& benchScenes() {
-  static const std::vector<BenchScene> scenes = {
+  static const std::vector<BenchScene> scenes = [] {
+    std::vector<BenchScene> v = {
       {"pyramid20", "pyramid", 20, "pyramid of 1 m boxes, base 20 (210 boxes), 500 steps", 500, 1.0 / 60.0, [] { return pyramid(20); }},
       {"pyramid40", "pyramid", 40, "pyramid, base 40 (820 boxes), 500 steps", 500, 1.0 / 60.0, [] { return pyramid(40); }},
       {"pyramid100", "pyramid", 100, "pyramid, base 100 (5050 boxes), 300 steps", 300, 1.0 / 60.0, [] { return pyramid(100); }},
@@ -341,7 +342,10 @@ const std::vector<BenchScene>& benchScenes() {
       {"springs", "springs", 1000, "1000 bodies on built-in springs, RK4, no contacts", 600, 1.0 / 60.0, builtinSprings},
       {"lua_springs", "lua_springs", 1000, "1000 bodies on Lua springs (forces.spring), RK4, no contacts", 600, 1.0 / 60.0,
        luaSprings},
-  };
+    };
+    addSuiteScenes(v);
+    return v;
+  }();
   return scenes;
 }
 

@@ -8,6 +8,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "rigidlab/lua/scene.h"
@@ -33,6 +34,8 @@ struct BenchWorld {
   int top = -1, bottom = -1;  // index into bodies (pyramid/stack top box; massratio boxes; bullet)
   double wall_x = 0, wall_hx = 0;                     // bullet
   double cont_min_x = 0, cont_max_x = 0, cont_floor = 0;  // rain container interior
+  // Edits the scene makes before a step (Box2D v3's rain adds and removes ragdolls); timed with it.
+  std::function<void(World&, int step)> before_step;
   World& get() { return scene ? scene->world() : *world; }
   long luaCalls() const { return scene ? scene->luaCalls() : 0; }
 };
@@ -56,6 +59,17 @@ struct BenchScene {
 };
 
 const std::vector<BenchScene>& benchScenes();
+
+// Box2D v3's benchmark suite (bench_suite.cpp): large_pyramid, many_pyramids, joint_grid,
+// ragdolls, smash, spinner, tumbler.
+void addSuiteScenes(std::vector<BenchScene>& scenes);
+bool isSuiteScene(const std::string& kind);
+// Where each dynamic body was after the first step (by uid), for suiteMetrics.
+struct SuiteTracker {
+  std::unordered_map<uint32_t, Vec2> start;
+  void observe(World& w, int step);
+};
+std::string suiteMetrics(World& w, const SuiteTracker& tracker);
 
 // Solver settings every bench world starts from (rigidlab's defaults unless `rigidlab bench`
 // is told otherwise), so one run can show what sub-steps or iterations cost and buy.

@@ -1,5 +1,10 @@
 #include "json_value.h"
 
+#include <cmath>
+#include <cstdio>
+
+#include "report.h"
+
 #include <cctype>
 #include <cstdlib>
 
@@ -109,6 +114,34 @@ std::optional<std::string> JsonValue::str(const std::string& key) const {
   const JsonValue* v = get(key);
   if (!v || v->type != Type::String) return std::nullopt;
   return v->string;
+}
+
+std::string JsonValue::dump() const {
+  switch (type) {
+    case Type::Null: return "null";
+    case Type::Bool: return boolean ? "true" : "false";
+    case Type::Number: {
+      char buf[64];
+      std::snprintf(buf, sizeof buf, std::isfinite(number) ? "%.6g" : "null", number);
+      return buf;
+    }
+    case Type::String: return jsonString(string);
+    case Type::Array: {
+      std::string s = "[";
+      for (size_t i = 0; i < array.size(); ++i) s += (i ? ", " : "") + array[i].dump();
+      return s + "]";
+    }
+    case Type::Object: {
+      std::string s = "{";
+      bool first = true;
+      for (const auto& [k, v] : object) {
+        s += (first ? "" : ", ") + jsonString(k) + ": " + v.dump();
+        first = false;
+      }
+      return s + "}";
+    }
+  }
+  return "null";
 }
 
 std::optional<JsonValue> parseJson(const std::string& text) {

@@ -1,4 +1,5 @@
-// A small JSON reader for `rigidlab bench --compare`, which reads the peer programs' output lines.
+// A small JSON reader (and writer) for `rigidlab bench --compare`, which reads the peer programs'
+// output lines.
 // Objects, arrays, strings (no \u escapes beyond ASCII), numbers, booleans, null.
 #pragma once
 
@@ -21,6 +22,7 @@ struct JsonValue {
   const JsonValue* get(const std::string& key) const;  // nullptr if absent or not an object
   std::optional<double> num(const std::string& key) const;
   std::optional<std::string> str(const std::string& key) const;
+  std::string dump() const;  // compact JSON; numbers as %.6g (null when not finite)
 };
 
 // nullopt if `text` is not one valid JSON value.

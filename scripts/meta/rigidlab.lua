@@ -49,27 +49,41 @@ function Vec2:rotated(angle) end
 ---@return rigidlab.Vec2
 function vec2(x, y) end
 
----A rigid body. Handles are compared with ==; the same body is always the same handle.
+---A rigid body made of shapes. Handles are compared with ==; the same body is always the same handle.
 ---@class rigidlab.Body
 ---@field position rigidlab.Vec2 body origin in world coordinates (read/write)
 ---@field angle number radians, counter-clockwise (read/write)
----@field velocity rigidlab.Vec2 velocity of the centre of mass, m/s (read/write)
----@field angular_velocity number rad/s (read/write)
----@field mass number kg (read/write; keeps the shape, changes the density)
----@field static boolean static bodies have infinite mass and do not move (read/write)
+---@field velocity rigidlab.Vec2 velocity of the centre of mass, m/s; a static body's must stay zero (read/write)
+---@field angular_velocity number rad/s; a static body's must stay zero (read/write)
+---@field mass number kg; writing keeps the shapes and their proportions, changes the densities (read/write)
+---@field static boolean type == "static"; writing false makes the body dynamic (read/write)
+---@field type "static"|"kinematic"|"dynamic" (read/write)
 ---@field name string (read/write)
----@field restitution number 0..1 (read/write)
----@field friction number dynamic friction coefficient (read/write)
----@field static_friction number static friction coefficient (read/write)
----@field awake boolean false while the body sleeps (read; write true to wake it and its island)
+---@field restitution number 0..1, of every shape; reading it on a compound body whose shapes differ is an error (read/write)
+---@field friction number dynamic friction coefficient of every shape (read/write)
+---@field static_friction number static friction coefficient of every shape (read/write)
+---@field awake boolean false while the body sleeps; write true to wake it and its island (read/write)
 ---@field id integer 1, 2, 3, ... in creation order, never reused (read only)
 ---@field center rigidlab.Vec2 world centre of mass (read only)
+---@field local_center rigidlab.Vec2 centre of mass in body coordinates (read only)
 ---@field inertia number kg·m² about the centre of mass (read only)
----@field density number kg/m² (read only)
----@field shape "circle"|"polygon" (read only)
----@field radius number|nil circles only (read only)
----@field vertices rigidlab.Vec2[]|nil polygons only, body coordinates (read only)
+---@field density number kg/m²: the shapes' density if they share one, else mass / area (read only)
+---@field shape "circle"|"polygon"|"capsule"|"segment"|"chain_segment"|nil a one-shape body's kind; an error on a compound body (read only)
+---@field radius number|nil a one-shape circle's or capsule's radius (read only)
+---@field vertices rigidlab.Vec2[]|nil a one-shape polygon's corners, body coordinates (read only)
+---@field shapes rigidlab.Shape[] in the order they were added (read only)
 ---@field removed boolean true once world:remove(body) was called (read only)
+---@field linear_damping number 1/s, implicit: never flips a velocity (read/write)
+---@field angular_damping number 1/s (read/write)
+---@field gravity_scale number multiplies the world's gravity for this body (read/write)
+---@field fixed_rotation boolean the body never turns (read/write)
+---@field bullet boolean also swept against dynamic bodies (read/write)
+---@field enabled boolean false: out of the simulation, kept as it is (read/write)
+---@field user_data any any Lua value, kept with the body as it is (not copied); never read by rigidlab (read/write)
+---@field sensor boolean every shape is a sensor (read/write)
+---@field category integer collision category bits of every shape, 64-bit (read/write)
+---@field mask integer bits of the categories every shape collides with; -1 is all (read/write)
+---@field group integer collision group of every shape: same positive group always collides, same negative never (read/write)
 local Body = {}
 
 ---Changes the momentum at once: Δv = j / m, Δω = (point − center) × j / I.
@@ -83,6 +97,107 @@ function Body:apply_impulse(impulse, point) end
 ---@param duration? number seconds; default: the next step only
 function Body:apply_force(force, point, duration) end
 
+---Adds a shape; the mass, centre of mass and inertia become the sums over the shapes.
+---@param options rigidlab.AddShapeOptions
+---@return rigidlab.Shape
+function Body:add_shape(options) end
+
+---Kinematic bodies: sets the velocity that reaches the pose in `time` seconds (and keeps it).
+---@param options rigidlab.TargetOptions
+function Body:set_target(options) end
+
+---The joints attached to the body.
+---@return rigidlab.Joint[]
+function Body:joints() end
+
+---A shape of a body (body:add_shape returns one; body.shapes lists them).
+---@class rigidlab.Shape
+---@field kind "circle"|"polygon"|"capsule"|"segment"|"chain_segment" (read only)
+---@field body rigidlab.Body (read only)
+---@field radius number|nil circles and capsules (read only)
+---@field center rigidlab.Vec2 centroid, body coordinates (read only)
+---@field vertices rigidlab.Vec2[]|nil polygons: corners, counter-clockwise, body coordinates (read only)
+---@field a rigidlab.Vec2|nil capsules, segments, chain segments: first point, body coordinates (read only)
+---@field b rigidlab.Vec2|nil second point (read only)
+---@field density number|nil kg/m²; nil for segments (read/write)
+---@field mass number kg, 0 for segments (read only)
+---@field area number m², 0 for segments (read only)
+---@field restitution number 0..1 (read/write)
+---@field friction number (read/write)
+---@field static_friction number (read/write)
+---@field sensor boolean a sensor collides with nothing (read/write)
+---@field category integer the categories the shape belongs to, 64 bits (read/write)
+---@field mask integer the categories it collides with; -1 (every bit) by default (read/write)
+---@field group integer same positive group: always collide; same negative group: never (read/write)
+---@field removed boolean (read only)
+local Shape = {}
+
+---Removes the shape from its body (no-op if already removed); the body's mass is recomputed.
+function Shape:remove() end
+
+---A joint handle (world:add_revolute and the other joint functions return one). Which fields a
+---joint has depends on its kind; a field of another kind is an error.
+---@class rigidlab.Joint
+---@field kind "revolute"|"prismatic"|"distance"|"weld"|"wheel"|"motor"|"friction"|"pulley"|"gear" (read only)
+---@field a rigidlab.Body (read only)
+---@field b rigidlab.Body|nil nil: the joint pins a to the world (read only)
+---@field name string (read/write)
+---@field collide_connected boolean may a and b collide (read/write)
+---@field break_force number N; math.huge: never breaks (read/write)
+---@field break_torque number N·m (read/write)
+---@field angle number revolute, wheel, weld: b's angle relative to a since creation (a's own when b is nil), rad (read only)
+---@field speed number revolute, wheel: relative angular speed, rad/s; prismatic: along the axis, m/s (read only)
+---@field translation number prismatic, wheel: along the axis, m; distance: current length, m (read only)
+---@field reaction_force rigidlab.Vec2 force the joint applied in the last step to b (to a when b is nil), N (read only)
+---@field reaction_torque number N·m (read only)
+---@field anchor_a rigidlab.Vec2 the anchor on a, world coordinates now (read only)
+---@field anchor_b rigidlab.Vec2 the anchor on b (or the world), world coordinates now (read only)
+---@field broken boolean the joint broke (and was removed) (read only)
+---@field removed boolean (read only)
+---@field enable_limit boolean revolute, prismatic, wheel, distance (read/write)
+---@field lower_angle number revolute, rad; writing it enables the limit (read/write)
+---@field upper_angle number revolute, rad (read/write)
+---@field lower number prismatic, wheel: m (read/write)
+---@field upper number prismatic, wheel: m (read/write)
+---@field enable_motor boolean revolute, prismatic, wheel (read/write)
+---@field motor_speed number rad/s (prismatic: m/s); writing it enables the motor (read/write)
+---@field max_motor_torque number revolute, wheel: N·m (read/write)
+---@field max_motor_force number prismatic: N (read/write)
+---@field enable_spring boolean revolute, prismatic, wheel, distance (read/write)
+---@field spring_hertz number Hz; writing > 0 enables the spring, 0 disables it (read/write)
+---@field spring_damping number damping ratio (read/write)
+---@field length number distance: rest length, m (read only)
+---@field min_length number distance, m (read/write)
+---@field max_length number distance, m; math.huge: none (read/write)
+---@field max_spring_force number distance, N (read/write)
+---@field linear_hertz number weld, Hz (0: rigid) (read/write)
+---@field linear_damping number weld (read/write)
+---@field angular_hertz number weld, Hz (read/write)
+---@field angular_damping number weld (read/write)
+---@field linear_offset rigidlab.Vec2 motor: target of b's anchor in a's frame (world when b is nil) (read/write)
+---@field angular_offset number motor: target angle of b relative to a, rad (read/write)
+---@field linear_velocity rigidlab.Vec2 motor: velocity target, m/s (read/write)
+---@field angular_velocity number motor: angular velocity target, rad/s (read/write)
+---@field max_force number motor, friction: N (read/write)
+---@field max_torque number motor, friction: N·m (read/write)
+---@field motor_hertz number motor: stiffness of the drive, Hz (0: as stiff as joints) (read/write)
+---@field motor_damping number motor: damping ratio (read/write)
+---@field ground_a rigidlab.Vec2 pulley: fixed point of a's rope (read only)
+---@field ground_b rigidlab.Vec2 pulley: fixed point of b's rope (read only)
+---@field ratio number pulley, gear (read only)
+---@field joint_a rigidlab.Joint|nil gear: the first geared joint (read only)
+---@field joint_b rigidlab.Joint|nil gear: the second geared joint (read only)
+local Joint = {}
+
+---Removes the joint (no-op if already removed or broken).
+function Joint:remove() end
+
+---Revolute, prismatic, wheel: both limits at once (lower ≤ upper) and enables them; distance:
+---min_length and max_length.
+---@param lower number
+---@param upper number
+function Joint:set_limits(lower, upper) end
+
 ---A force, spring or damper handle.
 ---@class rigidlab.ForceHandle
 ---@field kind string "spring", "damper" or "lua force"
@@ -92,29 +207,80 @@ local ForceHandle = {}
 ---Removes the force (no-op if already removed or expired).
 function ForceHandle:remove() end
 
----Options every add_* body function accepts.
+---Options every function that makes a body accepts (world:add_body takes only these).
 ---@class rigidlab.BodyOptions
----@field position? rigidlab.VecLike default {0, 0}
+---@field position? rigidlab.VecLike body origin, default {0, 0}
 ---@field angle? number default 0
----@field velocity? rigidlab.VecLike default {0, 0}
+---@field velocity? rigidlab.VecLike of the centre of mass, default {0, 0} (a static body: must be zero)
 ---@field angular_velocity? number default 0
----@field density? number kg/m², default 1 (not together with mass)
----@field mass? number kg (sets the density)
+---@field type? "static"|"kinematic"|"dynamic" default "dynamic" ("static" for add_segment, add_chain)
+---@field static? boolean the older spelling of type = "static" (not together with type)
+---@field name? string
+---@field linear_damping? number 1/s ≥ 0, default 0
+---@field angular_damping? number 1/s ≥ 0, default 0
+---@field gravity_scale? number default 1
+---@field fixed_rotation? boolean default false
+---@field bullet? boolean default false
+---@field enabled? boolean default true
+---@field user_data? any any Lua value, kept with the body
+
+---The options of a shape: body:add_shape and, for their one shape, the add_* body functions.
+---@class rigidlab.ShapeOptions
+---@field density? number kg/m², default 1 (not for segments and chains)
 ---@field restitution? number 0..1, default 0
 ---@field friction? number default 0.6
 ---@field static_friction? number default: friction
----@field static? boolean default false
----@field name? string
+---@field sensor? boolean default false: a sensor collides with nothing
+---@field category? integer 64-bit category bits, default 1 (a float with a whole value is taken too)
+---@field mask? integer 64-bit bits of the categories it collides with, default -1 (all)
+---@field group? integer 32-bit: same positive group always collides, same negative never; default 0
 
----@class rigidlab.BoxOptions: rigidlab.BodyOptions
+---A body with one shape (add_box, add_circle, add_polygon, add_capsule, add_segment, add_chain).
+---@class rigidlab.ShapedBodyOptions: rigidlab.BodyOptions, rigidlab.ShapeOptions
+---@field mass? number kg (sets the density; not together with density)
+
+---@class rigidlab.BoxOptions: rigidlab.ShapedBodyOptions
 ---@field width number m
 ---@field height number m
 
----@class rigidlab.CircleOptions: rigidlab.BodyOptions
+---@class rigidlab.CircleOptions: rigidlab.ShapedBodyOptions
 ---@field radius number m
 
----@class rigidlab.PolygonOptions: rigidlab.BodyOptions
----@field vertices rigidlab.VecLike[] body coordinates; convex, 3..32 points, any winding
+---@class rigidlab.PolygonOptions: rigidlab.ShapedBodyOptions
+---@field vertices rigidlab.VecLike[] body coordinates; convex, 3..32 points, any winding (concave: up to 256)
+---@field concave? boolean default false; true: the outline may be concave, the body is made of convex pieces
+
+---@class rigidlab.CapsuleOptions: rigidlab.ShapedBodyOptions
+---@field a rigidlab.VecLike first centre, body coordinates
+---@field b rigidlab.VecLike second centre
+---@field radius number m
+
+---A segment has no area: static (the default) or kinematic bodies only; no density or mass.
+---@class rigidlab.SegmentOptions: rigidlab.ShapedBodyOptions
+---@field a rigidlab.VecLike body coordinates
+---@field b rigidlab.VecLike
+
+---A chain of segments on a static body; one-sided: it faces the right of the direction from a
+---point to the next (list ground from right to left; a counter-clockwise loop is solid inside).
+---@class rigidlab.ChainOptions: rigidlab.ShapedBodyOptions
+---@field points rigidlab.VecLike[] body coordinates, at least 2 (a loop: 3)
+---@field loop? boolean default false
+
+---@class rigidlab.AddShapeOptions: rigidlab.ShapeOptions
+---@field shape "circle"|"box"|"polygon"|"capsule"|"segment"
+---@field radius? number circle, capsule
+---@field width? number box
+---@field height? number box
+---@field vertices? rigidlab.VecLike[] polygon: convex, 3..32 points, shape coordinates
+---@field a? rigidlab.VecLike capsule, segment: shape coordinates
+---@field b? rigidlab.VecLike capsule, segment
+---@field offset? rigidlab.VecLike where the shape's origin lies in the body, default {0, 0}
+---@field angle? number how far the shape is turned in the body, default 0
+
+---@class rigidlab.TargetOptions
+---@field position? rigidlab.VecLike the body origin to reach, default where it is
+---@field angle? number default the body's angle
+---@field time number seconds > 0
 
 ---@class rigidlab.SpringOptions
 ---@field a rigidlab.Body
@@ -130,6 +296,125 @@ function ForceHandle:remove() end
 ---@field body rigidlab.Body
 ---@field coefficient number F = −c v, N·s/m
 ---@field angular_coefficient? number τ = −c_ω ω, N·m·s, default 0
+
+---Options every joint function accepts.
+---@class rigidlab.JointOptions
+---@field collide_connected? boolean default false: the joined bodies do not collide
+---@field break_force? number N, default math.huge (never)
+---@field break_torque? number N·m, default math.huge
+---@field name? string for world:find_joint
+
+---A pin: the bodies turn about `anchor`. Giving lower_angle and upper_angle enables the limit;
+---motor_speed (with max_motor_torque) the motor; spring_hertz > 0 the spring.
+---@class rigidlab.RevoluteOptions: rigidlab.JointOptions
+---@field a rigidlab.Body
+---@field b? rigidlab.Body default: the world
+---@field anchor rigidlab.VecLike world point
+---@field enable_limit? boolean overrides what the limit options imply
+---@field lower_angle? number rad, b's angle relative to a from now (a's own when b is nil)
+---@field upper_angle? number rad
+---@field enable_motor? boolean
+---@field motor_speed? number rad/s (needs max_motor_torque)
+---@field max_motor_torque? number N·m
+---@field enable_spring? boolean
+---@field spring_hertz? number Hz, towards the angle at creation
+---@field spring_damping? number damping ratio
+
+---A slider: b moves along `axis` (fixed in a; in the world when b is nil) without turning.
+---@class rigidlab.PrismaticOptions: rigidlab.JointOptions
+---@field a rigidlab.Body
+---@field b? rigidlab.Body
+---@field anchor rigidlab.VecLike world point
+---@field axis rigidlab.VecLike direction, not zero
+---@field enable_limit? boolean
+---@field lower? number m along the axis
+---@field upper? number m
+---@field enable_motor? boolean
+---@field motor_speed? number m/s (needs max_motor_force)
+---@field max_motor_force? number N
+---@field enable_spring? boolean
+---@field spring_hertz? number Hz, towards translation 0
+---@field spring_damping? number
+
+---The anchors keep their distance (rigid), stay within min_length..max_length (a rope is
+---max_length alone) or are held by a spring.
+---@class rigidlab.DistanceOptions: rigidlab.JointOptions
+---@field a rigidlab.Body
+---@field b? rigidlab.Body
+---@field anchor_a? rigidlab.VecLike world point on a, default its centre of mass
+---@field anchor_b? rigidlab.VecLike world point on b, default its centre of mass (required when b is nil)
+---@field length? number m, default the distance now
+---@field enable_limit? boolean
+---@field min_length? number m (enables the limit)
+---@field max_length? number m (enables the limit)
+---@field enable_spring? boolean
+---@field spring_hertz? number Hz (> 0: a spring instead of a rigid length)
+---@field spring_damping? number
+---@field max_spring_force? number N, default math.huge
+
+---@class rigidlab.WeldOptions: rigidlab.JointOptions
+---@field a rigidlab.Body
+---@field b? rigidlab.Body
+---@field anchor rigidlab.VecLike world point
+---@field linear_hertz? number Hz, 0 (default): rigid
+---@field linear_damping? number
+---@field angular_hertz? number Hz, 0: rigid
+---@field angular_damping? number
+
+---A car's wheel: b's anchor stays on `axis` (fixed in a); b turns freely. Without spring_hertz
+---the wheel slides freely along the axis.
+---@class rigidlab.WheelOptions: rigidlab.JointOptions
+---@field a rigidlab.Body
+---@field b? rigidlab.Body
+---@field anchor rigidlab.VecLike world point
+---@field axis rigidlab.VecLike suspension direction, not zero
+---@field enable_limit? boolean
+---@field lower? number m
+---@field upper? number m
+---@field enable_motor? boolean
+---@field motor_speed? number rad/s (needs max_motor_torque)
+---@field max_motor_torque? number N·m
+---@field enable_spring? boolean
+---@field spring_hertz? number Hz: the suspension
+---@field spring_damping? number
+
+---Drives b towards a pose relative to a (the world when b is nil) with limited force and torque.
+---@class rigidlab.MotorJointOptions: rigidlab.JointOptions
+---@field a rigidlab.Body
+---@field b? rigidlab.Body
+---@field anchor? rigidlab.VecLike the driven point (world), default the driven body's centre of mass
+---@field linear_offset? rigidlab.VecLike target of the driven point in a's frame; default where it is
+---@field angular_offset? number target angle relative to a; default as now
+---@field linear_velocity? rigidlab.VecLike velocity target, m/s
+---@field angular_velocity? number rad/s
+---@field max_force? number N, default 0
+---@field max_torque? number N·m, default 0
+---@field motor_hertz? number Hz, 0 (default): as stiff as joints
+---@field motor_damping? number default 1
+
+---Top-down friction: resists relative motion up to max_force and max_torque.
+---@class rigidlab.FrictionJointOptions: rigidlab.JointOptions
+---@field a rigidlab.Body
+---@field b? rigidlab.Body
+---@field anchor? rigidlab.VecLike default the centre of mass of b (of a when b is nil)
+---@field max_force? number N
+---@field max_torque? number N·m
+
+---Two bodies on a rope over two fixed points: length_a + ratio · length_b stays constant.
+---@class rigidlab.PulleyOptions: rigidlab.JointOptions
+---@field a rigidlab.Body
+---@field b rigidlab.Body
+---@field anchor_a? rigidlab.VecLike world, default a's centre of mass
+---@field anchor_b? rigidlab.VecLike world, default b's centre of mass
+---@field ground_a rigidlab.VecLike the fixed point a's rope runs over
+---@field ground_b rigidlab.VecLike
+---@field ratio? number > 0, default 1
+
+---Couples two revolute or prismatic joints: coordinate_a + ratio · coordinate_b stays constant.
+---@class rigidlab.GearOptions: rigidlab.JointOptions
+---@field joint_a rigidlab.Joint
+---@field joint_b rigidlab.Joint
+---@field ratio? number not 0, default 1
 
 ---The state a Lua force sees, at the integrator stage being evaluated. Only valid during the call.
 ---@class rigidlab.BodyState
@@ -163,6 +448,11 @@ function ForceHandle:remove() end
 ---@field title string the scene's title (read only)
 local World = {}
 
+---A body without shapes (add them with body:add_shape).
+---@param options rigidlab.BodyOptions
+---@return rigidlab.Body
+function World:add_body(options) end
+
 ---@param options rigidlab.BoxOptions
 ---@return rigidlab.Body
 function World:add_box(options) end
@@ -174,6 +464,18 @@ function World:add_circle(options) end
 ---@param options rigidlab.PolygonOptions
 ---@return rigidlab.Body
 function World:add_polygon(options) end
+
+---@param options rigidlab.CapsuleOptions
+---@return rigidlab.Body
+function World:add_capsule(options) end
+
+---@param options rigidlab.SegmentOptions
+---@return rigidlab.Body
+function World:add_segment(options) end
+
+---@param options rigidlab.ChainOptions
+---@return rigidlab.Body
+function World:add_chain(options) end
 
 ---@param options rigidlab.SpringOptions
 ---@return rigidlab.ForceHandle
@@ -187,6 +489,51 @@ function World:add_damper(options) end
 ---@return rigidlab.ForceHandle
 function World:add_force(options) end
 
+---@param options rigidlab.RevoluteOptions
+---@return rigidlab.Joint
+function World:add_revolute(options) end
+
+---@param options rigidlab.PrismaticOptions
+---@return rigidlab.Joint
+function World:add_prismatic(options) end
+
+---@param options rigidlab.DistanceOptions
+---@return rigidlab.Joint
+function World:add_distance(options) end
+
+---@param options rigidlab.WeldOptions
+---@return rigidlab.Joint
+function World:add_weld(options) end
+
+---@param options rigidlab.WheelOptions
+---@return rigidlab.Joint
+function World:add_wheel(options) end
+
+---@param options rigidlab.MotorJointOptions
+---@return rigidlab.Joint
+function World:add_motor_joint(options) end
+
+---@param options rigidlab.FrictionJointOptions
+---@return rigidlab.Joint
+function World:add_friction_joint(options) end
+
+---@param options rigidlab.PulleyOptions
+---@return rigidlab.Joint
+function World:add_pulley(options) end
+
+---@param options rigidlab.GearOptions
+---@return rigidlab.Joint
+function World:add_gear(options) end
+
+---All joints.
+---@return rigidlab.Joint[]
+function World:joints() end
+
+---The first joint with this name, or nil.
+---@param name string
+---@return rigidlab.Joint|nil
+function World:find_joint(name) end
+
 ---All bodies, in creation order.
 ---@return rigidlab.Body[]
 function World:bodies() end
@@ -196,8 +543,8 @@ function World:bodies() end
 ---@return rigidlab.Body|nil
 function World:find(name) end
 
----Removes a body (with its forces) or a force, spring or damper.
----@param what rigidlab.Body|rigidlab.ForceHandle
+---Removes a body (with its shapes, joints and forces), a shape, a joint, or a force, spring or damper.
+---@param what rigidlab.Body|rigidlab.Shape|rigidlab.Joint|rigidlab.ForceHandle
 function World:remove(what) end
 
 ---Advances the world by dt (default world.dt). Does not call OnStep.

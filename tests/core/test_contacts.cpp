@@ -349,6 +349,56 @@ TEST_CASE("continuous collision: fast bodies do not tunnel through a thin static
   }
 }
 
+TEST_CASE("continuous collision: walls added, moved or made static after the first step stop fast bodies too") {
+  // The static shapes are kept in a tree between steps; every edit that can add or move one must
+  // reach it. Each case fires a 100 m/s disc at x = 5 after the world has stepped once. With impacts
+  // once per step the disc is swept against the tree; with located impacts it is not swept (the
+  // impact search finds the wall), and the edits must reach that search as well.
+  enum class Edit { AddWall, MoveWall, MakeStatic, AddShape, Enable };
+  for (const ImpactHandling impacts : {ImpactHandling::PerStep, ImpactHandling::Located})
+  for (Edit edit : {Edit::AddWall, Edit::MoveWall, Edit::MakeStatic, Edit::AddShape, Edit::Enable}) {
+    CAPTURE(impactHandlingName(impacts));
+    CAPTURE(static_cast<int>(edit));
+    World w;
+    w.setGravity(Vec2::Zero());
+    w.setImpacts(impacts);
+    test::addBox(w, 1, 1, {-20.0, 30.0}, true);  // some static shape, so the tree exists
+    BodyId wall;
+    if (edit == Edit::MoveWall) wall = test::addBox(w, 0.1, 10, {50.0, 0.0}, true);
+    if (edit == Edit::MakeStatic) wall = test::addBox(w, 0.1, 10, {5.0, 0.0}, false);
+    if (edit == Edit::AddShape) {
+      BodyDef bare;
+      bare.type = BodyType::Static;
+      wall = w.createBody(bare);
+    }
+    if (edit == Edit::Enable) {
+      wall = test::addBox(w, 0.1, 10, {5.0, 0.0}, true);
+      w.setEnabled(wall, false);
+    }
+    const BodyId disc = test::addCircle(w, 0.1, {0.8, 0.0});
+    w.setVelocity(disc, {-100.0, 0.0});
+    w.step(1.0 / 60.0);  // a first sweep (away from x = 5) builds the tree
+    REQUIRE(w.stats().ccd_sweeps == (impacts == ImpactHandling::PerStep ? 1 : 0));
+    switch (edit) {
+      case Edit::AddWall: test::addBox(w, 0.1, 10, {5.0, 0.0}, true); break;
+      case Edit::MoveWall: w.setTransform(wall, {5.0, 0.0}, 0.0); break;
+      case Edit::MakeStatic: w.setType(wall, BodyType::Static); break;
+      case Edit::AddShape: {
+        ShapeDef piece;
+        piece.shape = makeBox(0.1, 20, {5.0, 0.0});
+        w.createShape(wall, piece);
+        break;
+      }
+      case Edit::Enable: w.setEnabled(wall, true); break;
+    }
+    w.setVelocity(disc, {100.0, 0.0});
+    for (int i = 0; i < 10; ++i) {
+      w.step(1.0 / 60.0);
+      REQUIRE(w.body(disc).position().x() < 4.95);
+    }
+  }
+}
+
 TEST_CASE("mass ratios: heavy boxes on a 1 kg box hold with sub-centimetre penetration (accuracy.md S7)") {
   for (double heavy : {10.0, 100.0, 1000.0}) {
     CAPTURE(heavy);

@@ -351,3 +351,55 @@ TEST_CASE("joints: validation names the field; removed with a body; bodies joine
   v.step(kDt);
   CHECK_FALSE(v.contacts().empty());
 }
+
+TEST_CASE("revolute reference_angle: the angle the limits and the spring count from") {
+  // A rod pinned to the world with reference_angle = 0.5: its joint angle reads -0.5, and a limit of
+  // [0, 0.1] turns it until its angle is within [0.5, 0.6].
+  World w;
+  w.setGravity(Vec2::Zero());
+  const BodyId rod = test::addBox(w, 0.1, 1.0, {0.0, -0.5});
+  JointDef j;
+  j.type = JointType::Revolute;
+  j.b = rod;  // a: the world
+  j.anchor_a = Vec2(0.0, 0.0);
+  j.reference_angle = 0.5;
+  const JointId id = w.createJoint(j);
+  CHECK(w.jointState(id).angle == Approx(-0.5).epsilon(1e-12));
+  j.enable_limit = true;
+  j.lower = 0.0;
+  j.upper = 0.1;
+  w.updateJoint(id, j);
+  for (int i = 0; i < 120; ++i) w.step(1.0 / 60.0);
+  const double angle = w.jointState(id).angle;
+  CHECK(angle > -1e-3);
+  CHECK(angle < 0.1 + 1e-3);
+  CHECK(w.body(rod).angle == Approx(0.5 + angle).epsilon(1e-9));  // the world's angle is 0
+  j.reference_angle = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THROWS_AS(w.createJoint(j), InputError);
+}
+
+TEST_CASE("updateJoint checks a motor joint's new target like createJoint does") {
+  // The target pose is validated before it is taken: a NaN offset once passed here and made the
+  // joint's anchor NaN (found by fuzz_world).
+  World w;
+  const BodyId puck = test::addCircle(w, 0.2, {1.0, 0.0});
+  JointDef m;
+  m.type = JointType::Motor;
+  m.b = puck;
+  m.anchor_a = Vec2(1.0, 0.0);
+  m.max_force = 10.0;
+  const JointId id = w.createJoint(m);
+  JointDef bad = w.joint(id);
+  bad.linear_offset = Vec2(std::numeric_limits<double>::quiet_NaN(), 0.0);
+  CHECK_THROWS_AS(w.updateJoint(id, bad), InputError);
+  bad = w.joint(id);
+  bad.angular_offset = std::numeric_limits<double>::infinity();
+  CHECK_THROWS_AS(w.updateJoint(id, bad), InputError);
+  CHECK(w.joint(id).linear_offset == Vec2(1.0, 0.0));
+  w.step(1.0 / 60.0);
+  CHECK(std::isfinite(w.jointState(id).world_anchor_a.x()));
+  JointDef moved = w.joint(id);
+  moved.linear_offset = Vec2(2.0, 0.0);
+  w.updateJoint(id, moved);
+  CHECK(w.jointState(id).world_anchor_a.x() == 2.0);
+}

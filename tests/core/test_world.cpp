@@ -388,6 +388,52 @@ TEST_CASE("sleeping: a resting island falls asleep, costs nothing, and wakes whe
   CHECK(w.body(low).awake);
 }
 
+TEST_CASE("sleeping: bodies created asleep cost nothing until touched, and only at rest in a sleeping world") {
+  World w;
+  w.setGravity(Vec2::Zero());
+  BodyDef d;
+  d.shape = makeBox(0.4, 0.4);
+  d.awake = false;
+  std::vector<BodyId> wall;
+  for (int j = 0; j < 5; ++j) {
+    d.position = {5.0, 0.4 * j};
+    wall.push_back(w.createBody(d));
+  }
+  for (BodyId id : wall) CHECK_FALSE(w.body(id).awake);
+  // Shapes added before the first step keep a body created asleep asleep (a compound at rest)...
+  BodyDef bare;
+  bare.awake = false;
+  bare.position = {5.0, -2.0};
+  const BodyId compound = w.createBody(bare);
+  ShapeDef piece;
+  piece.shape = makeBox(0.4, 0.4);
+  w.createShape(compound, piece);
+  CHECK_FALSE(w.body(compound).awake);
+  w.step(1.0 / 60.0);
+  CHECK(w.stats().awake_bodies == 0);
+  // ...but once stepped, an added shape wakes it: it may overlap what it rests against.
+  w.createShape(compound, piece);
+  CHECK(w.body(compound).awake);
+  w.step(1.0 / 60.0);
+  w.destroyBody(compound);
+  // Moving bodies and bodies of a world that does not sleep start awake whatever they ask.
+  d.position = {20.0, 0.0};
+  d.velocity = {1.0, 0.0};
+  CHECK(w.body(w.createBody(d)).awake);
+  {
+    WorldDef def;
+    def.sleeping = false;
+    World awake_world(def);
+    d.velocity = Vec2::Zero();
+    CHECK(awake_world.body(awake_world.createBody(d)).awake);
+  }
+  // A ball thrown at the wall wakes the column it hits and pushes it.
+  const BodyId ball = test::addCircle(w, 0.2, {0.0, 0.0});
+  w.setVelocity(ball, {10.0, 0.0});
+  for (int i = 0; i < 60; ++i) w.step(1.0 / 60.0);
+  CHECK(w.body(wall[0]).position().x() > 5.1);
+}
+
 TEST_CASE("sleeping: forces that may change keep their bodies awake; springs at rest let them sleep") {
   World w;
   const BodyId hanging = test::addCircle(w, 0.2, {0, 0});

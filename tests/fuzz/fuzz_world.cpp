@@ -332,7 +332,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     for (JointId j : w.jointIds()) {
       const JointState s = w.jointState(j);  // a joint's readings stay finite with its bodies
       if (!isFinite(s.world_anchor_a) || !isFinite(s.world_anchor_b)) {
-        std::fprintf(stderr, "fuzz_world: joint %u has a non-finite anchor after step %ld\n", j.index, w.stepCount());
+        const JointDef& d = w.joint(j);
+        std::fprintf(stderr, "fuzz_world: joint %u (%s) has a non-finite anchor after step %ld: a (%g, %g), b (%g, %g)\n",
+                     j.index, jointTypeName(d.type), w.stepCount(), s.world_anchor_a.x(), s.world_anchor_a.y(),
+                     s.world_anchor_b.x(), s.world_anchor_b.y());
+        for (BodyId b : {d.a, d.b})
+          if (!b.isNull())
+            std::fprintf(stderr, "  body uid %u at (%g, %g) angle %g\n", w.body(b).uid, w.body(b).position().x(),
+                         w.body(b).position().y(), w.body(b).angle);
         std::abort();
       }
     }

@@ -5,6 +5,10 @@
 # they are worth keeping). Exit status 1 and the crashing input's path if anything crashes, leaks,
 # trips a sanitizer or hangs (-timeout).
 #
+# The mutations follow FUZZ_SEED (default 1), so a run repeats what an earlier one on the same
+# commit explored, up to where the time ran out; FUZZ_SEED=0 lets libFuzzer pick a seed, for
+# longer hunts (FUZZ_SEED=0 tests/fuzz/run.sh build-fuzz 3600).
+#
 # Usage: tests/fuzz/run.sh BUILD_DIR [SECONDS]
 #   BUILD_DIR: a build of tests/fuzz (CC=clang CXX=clang++ cmake -S tests/fuzz -B BUILD_DIR)
 set -euo pipefail
@@ -42,7 +46,7 @@ fuzz() {  # TARGET OPTION... -- SEED_DIR...
   mkdir -p "$work/$target"
   cp -r "$here/corpus/${target#fuzz_}/." "$work/$target/"
   local log="$work/$target.log"
-  if "$build/$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+  if "$build/$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 -seed="${FUZZ_SEED:-1}" \
        -artifact_prefix="$work/$target-" "${options[@]}" "$work/$target" "${seeds[@]}" >"$log" 2>&1; then
     echo "fuzz: $target: $(grep -E '^stat::number_of_executed_units' "$log" | awk '{print $2}') runs in ${seconds} s," \
          "$(grep -E '^stat::average_exec_per_sec' "$log" | awk '{print $2}') exec/s, no crash"

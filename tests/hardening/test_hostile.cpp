@@ -122,8 +122,8 @@ TEST_CASE("hostile: a scene's strings count against its memory limit") {
          "  for i = 1, 40000 do world:add_circle{ radius = 0.1, position = {i, 0}, name = name } end\n"
          "end\n");
   });
-  CHECK(o.message == "test.lua:4: add_circle: not enough memory (the scene's limit is 32 MiB); bodies and their names count "
-                     "against it");
+  CHECK(o.message == "test.lua:4: add_circle: not enough memory (the scene's limit is 32 MiB); bodies, shapes, joints and "
+                     "their names count against it");
   // Renaming counts too, and removing gives the memory back: the same 40 000 bodies fit when each
   // is removed after it is made.
   CHECK(timed([] {

@@ -21,7 +21,17 @@ namespace {
 
 // What an option accepts (the oracle).
 enum class Accepts { Positive, NonNegative, Finite, Unit, Vector, Boolean, String, Body, OtherBody, Function, Integrator,
-                     Iterations, MemoryMiB, Camera };
+                     Iterations, MemoryMiB, Camera,
+                     PositiveOrInfinity, NonNegativeOrInfinity,  // math.huge too (break_force, max_length)
+                     NonZero,     // finite and not 0 (a gear's ratio)
+                     Zero,        // 0 only (a static body's angular velocity)
+                     True,        // true only (static = true where the body must be static)
+                     BodyType,    // "static" or "kinematic" ("dynamic" is not in the pool)
+                     StaticType,  // "static" only (a chain's body)
+                     Bits,        // any integer, or a float with a whole value in [-2^63, 2^64) (category, mask)
+                     Int32,       // a whole number in [-2^31, 2^31) (group)
+                     Any,         // every value (user_data)
+                     Never };     // nothing in the pool (mass of a segment, a joint from a body, ...)
 
 // A Lua value of the pool, with what the oracle needs to know about it.
 struct Value {
@@ -57,6 +67,8 @@ const Value kPool[] = {
     {"'nan'", Value::Text, 0, false, "nan"},
     {"'rk4'", Value::Text, 0, false, "rk4"},
     {"'rk5'", Value::Text, 0, false, "rk5"},
+    {"'static'", Value::Text, 0, false, "static"},
+    {"'kinematic'", Value::Text, 0, false, "kinematic"},
     {"('x'):rep(100000)", Value::Text, 0, false, "x..."},
     {"true", Value::Bool},
     {"false", Value::Bool},
@@ -96,6 +108,19 @@ bool valid(Accepts a, const Value& v) {
     case Accepts::Iterations: return finiteNumber(v) && v.x == std::floor(v.x) && v.x >= 1 && v.x <= 10000;
     case Accepts::MemoryMiB: return finiteNumber(v) && v.x >= 1 && v.x <= 256;
     case Accepts::Camera: return false;  // tables of options: only {} or {center =, height =} would do
+    case Accepts::PositiveOrInfinity: return (finiteNumber(v) && v.x > 0) || (v.type == Value::Number && v.x == kInf);
+    case Accepts::NonNegativeOrInfinity: return (finiteNumber(v) && v.x >= 0) || (v.type == Value::Number && v.x == kInf);
+    case Accepts::NonZero: return finiteNumber(v) && v.x != 0;
+    case Accepts::Zero: return finiteNumber(v) && v.x == 0;
+    case Accepts::True: return v.type == Value::Bool && std::string(v.lua) == "true";
+    case Accepts::BodyType: return v.type == Value::Text && (std::string(v.text) == "static" || std::string(v.text) == "kinematic");
+    case Accepts::StaticType: return v.type == Value::Text && std::string(v.text) == "static";
+    case Accepts::Bits:
+      return v.type == Value::Integer ||
+             (v.type == Value::Number && std::isfinite(v.x) && v.x == std::floor(v.x) && v.x >= -0x1p63 && v.x < 0x1p64);
+    case Accepts::Int32: return finiteNumber(v) && v.x == std::floor(v.x) && v.x >= -0x1p31 && v.x < 0x1p31;
+    case Accepts::Any: return true;
+    case Accepts::Never: return false;
   }
   return false;
 }
@@ -112,22 +137,106 @@ struct Function {
   std::vector<Option> options;
 };
 
-const std::vector<Option> kBodyOptions = {
+// The body options of a moving body, and those of a body that must be static (a segment's or
+// chain's default): no velocity but zero, and static = false or another type refused.
+const std::vector<Option> kMovingOptions = {
     {"position", Accepts::Vector}, {"angle", Accepts::Finite}, {"velocity", Accepts::Vector},
-    {"angular_velocity", Accepts::Finite}, {"mass", Accepts::Positive}, {"restitution", Accepts::Unit},
-    {"friction", Accepts::NonNegative}, {"static_friction", Accepts::NonNegative}, {"static", Accepts::Boolean},
-    {"name", Accepts::String}};
+    {"angular_velocity", Accepts::Finite}, {"name", Accepts::String}, {"linear_damping", Accepts::NonNegative},
+    {"angular_damping", Accepts::NonNegative}, {"gravity_scale", Accepts::Finite}, {"fixed_rotation", Accepts::Boolean},
+    {"bullet", Accepts::Boolean}, {"enabled", Accepts::Boolean}, {"user_data", Accepts::Any}};
+const std::vector<Option> kStaticOptions = {
+    {"position", Accepts::Vector}, {"angle", Accepts::Finite}, {"velocity", Accepts::Never},
+    {"angular_velocity", Accepts::Zero}, {"name", Accepts::String}, {"linear_damping", Accepts::NonNegative},
+    {"angular_damping", Accepts::NonNegative}, {"gravity_scale", Accepts::Finite}, {"fixed_rotation", Accepts::Boolean},
+    {"bullet", Accepts::Boolean}, {"enabled", Accepts::Boolean}, {"user_data", Accepts::Any}, {"static", Accepts::True}};
+// The shape options (of body:add_shape, and of the one shape of add_box, ...) but density.
+const std::vector<Option> kMaterialOptions = {
+    {"restitution", Accepts::Unit}, {"friction", Accepts::NonNegative}, {"static_friction", Accepts::NonNegative},
+    {"sensor", Accepts::Boolean}, {"category", Accepts::Bits}, {"mask", Accepts::Bits}, {"group", Accepts::Int32}};
 
 std::vector<Option> plus(std::vector<Option> a, std::vector<Option> b) {
   a.insert(a.end(), b.begin(), b.end());
   return a;
 }
 
+const std::vector<Option> kBodyOptions =
+    plus(plus(kMovingOptions, kMaterialOptions),
+         {{"mass", Accepts::Positive}, {"static", Accepts::Boolean}, {"type", Accepts::BodyType}});
+// Options every joint takes.
+const std::vector<Option> kJointOptions = {{"collide_connected", Accepts::Boolean},
+                                           {"break_force", Accepts::PositiveOrInfinity},
+                                           {"break_torque", Accepts::PositiveOrInfinity},
+                                           {"name", Accepts::String}};
+// A joint's limit, motor and spring options.
+const std::vector<Option> kMotorSpring = {
+    {"enable_limit", Accepts::Boolean}, {"enable_motor", Accepts::Boolean}, {"enable_spring", Accepts::Boolean},
+    {"motor_speed", Accepts::Finite}, {"spring_hertz", Accepts::NonNegative}, {"spring_damping", Accepts::NonNegative}};
+
 const Function kFunctions[] = {
     {"add_box", "world:add_box{ width = 1, height = 1, $ }", plus(kBodyOptions, {{"width", Accepts::Positive}, {"height", Accepts::Positive}})},
     {"add_box", "world:add_box{ width = 1, height = 1, $ }", {{"density", Accepts::Positive}}},
     {"add_circle", "world:add_circle{ radius = 1, $ }", plus(kBodyOptions, {{"radius", Accepts::Positive}})},
-    {"add_polygon", "world:add_polygon{ vertices = {{0, 0}, {1, 0}, {0, 1}}, $ }", kBodyOptions},
+    {"add_polygon", "world:add_polygon{ vertices = {{0, 0}, {1, 0}, {0, 1}}, $ }", plus(kBodyOptions, {{"concave", Accepts::Boolean}})},
+    {"add_polygon", "world:add_polygon{ vertices = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}, concave = true, $ }",
+     plus(kBodyOptions, {{"density", Accepts::Positive}})},
+    {"add_capsule", "world:add_capsule{ a = {0, 0}, b = {1, 0}, radius = 0.5, $ }",
+     plus(kBodyOptions, {{"a", Accepts::Vector}, {"b", Accepts::Vector}, {"radius", Accepts::Positive}, {"density", Accepts::Positive}})},
+    {"add_segment", "world:add_segment{ a = {0, 0}, b = {1, 0}, type = 'kinematic', $ }",
+     plus(plus(kMovingOptions, kMaterialOptions), {{"a", Accepts::Vector}, {"b", Accepts::Vector}})},
+    {"add_segment", "world:add_segment{ a = {0, 0}, b = {1, 0}, $ }",
+     plus(kStaticOptions, {{"type", Accepts::BodyType}, {"mass", Accepts::Never}, {"density", Accepts::Never}})},
+    {"add_chain", "world:add_chain{ points = {{0, 0}, {1, 0}, {1, 1}}, $ }",
+     plus(plus(kStaticOptions, kMaterialOptions), {{"type", Accepts::StaticType}, {"loop", Accepts::Boolean},
+                                                   {"mass", Accepts::Never}, {"density", Accepts::Never}})},
+    {"add_body", "world:add_body{ $ }",
+     plus(kMovingOptions, {{"static", Accepts::Boolean}, {"type", Accepts::BodyType}, {"mass", Accepts::Never},
+                           {"density", Accepts::Never}, {"friction", Accepts::Never}, {"category", Accepts::Never}})},
+    {"add_shape", "nil_body:add_shape{ shape = 'box', width = 1, height = 1, $ }",
+     plus(kMaterialOptions, {{"width", Accepts::Positive}, {"height", Accepts::Positive}, {"offset", Accepts::Vector},
+                             {"angle", Accepts::Finite}, {"density", Accepts::Positive}, {"shape", Accepts::Never},
+                             {"radius", Accepts::Never}})},
+    {"add_shape", "nil_body:add_shape{ shape = 'circle', radius = 1, $ }", {{"radius", Accepts::Positive}}},
+    {"add_shape", "nil_body:add_shape{ shape = 'capsule', a = {0, 0}, b = {1, 0}, radius = 0.5, $ }",
+     {{"a", Accepts::Vector}, {"b", Accepts::Vector}}},
+    {"set_target", "kin:set_target{ time = 1, $ }",
+     {{"position", Accepts::Vector}, {"angle", Accepts::Finite}, {"time", Accepts::Positive}}},
+    {"add_revolute", "world:add_revolute{ a = nil_body, anchor = {0, 0}, lower_angle = -1e308, upper_angle = 1e308, max_motor_torque = 1, $ }",
+     plus(plus(kJointOptions, kMotorSpring),
+          {{"a", Accepts::Body}, {"b", Accepts::OtherBody}, {"anchor", Accepts::Vector}, {"lower_angle", Accepts::Finite},
+           {"upper_angle", Accepts::Finite}, {"max_motor_torque", Accepts::NonNegative}})},
+    {"add_prismatic", "world:add_prismatic{ a = nil_body, anchor = {0, 0}, axis = {1, 0}, lower = -1e308, upper = 1e308, max_motor_force = 1, $ }",
+     plus(plus(kJointOptions, kMotorSpring),
+          {{"a", Accepts::Body}, {"b", Accepts::OtherBody}, {"anchor", Accepts::Vector}, {"axis", Accepts::Vector},
+           {"lower", Accepts::Finite}, {"upper", Accepts::Finite}, {"max_motor_force", Accepts::NonNegative}})},
+    {"add_wheel", "world:add_wheel{ a = nil_body, anchor = {0, 0}, axis = {0, 1}, lower = -1e308, upper = 1e308, max_motor_torque = 1, $ }",
+     plus(plus(kJointOptions, kMotorSpring),
+          {{"a", Accepts::Body}, {"b", Accepts::OtherBody}, {"anchor", Accepts::Vector}, {"axis", Accepts::Vector},
+           {"lower", Accepts::Finite}, {"upper", Accepts::Finite}, {"max_motor_torque", Accepts::NonNegative}})},
+    {"add_distance", "world:add_distance{ a = nil_body, anchor_b = {0, 5}, $ }",
+     plus(kJointOptions,
+          {{"a", Accepts::Body}, {"anchor_a", Accepts::Vector}, {"anchor_b", Accepts::Vector}, {"length", Accepts::NonNegative},
+           {"min_length", Accepts::NonNegative}, {"max_length", Accepts::NonNegativeOrInfinity},
+           {"max_spring_force", Accepts::NonNegativeOrInfinity}, {"enable_limit", Accepts::Boolean},
+           {"enable_spring", Accepts::Boolean}, {"spring_hertz", Accepts::NonNegative}, {"spring_damping", Accepts::NonNegative}})},
+    {"add_distance", "world:add_distance{ a = nil_body, $ }", {{"b", Accepts::OtherBody}}},
+    {"add_weld", "world:add_weld{ a = nil_body, anchor = {0, 0}, $ }",
+     plus(kJointOptions, {{"a", Accepts::Body}, {"b", Accepts::OtherBody}, {"anchor", Accepts::Vector},
+                          {"linear_hertz", Accepts::NonNegative}, {"linear_damping", Accepts::NonNegative},
+                          {"angular_hertz", Accepts::NonNegative}, {"angular_damping", Accepts::NonNegative}})},
+    {"add_motor_joint", "world:add_motor_joint{ a = nil_body, $ }",
+     plus(kJointOptions, {{"a", Accepts::Body}, {"b", Accepts::OtherBody}, {"anchor", Accepts::Vector},
+                          {"linear_offset", Accepts::Vector}, {"angular_offset", Accepts::Finite},
+                          {"linear_velocity", Accepts::Vector}, {"angular_velocity", Accepts::Finite},
+                          {"max_force", Accepts::NonNegative}, {"max_torque", Accepts::NonNegative},
+                          {"motor_hertz", Accepts::NonNegative}, {"motor_damping", Accepts::NonNegative}})},
+    {"add_friction_joint", "world:add_friction_joint{ a = nil_body, $ }",
+     plus(kJointOptions, {{"a", Accepts::Body}, {"b", Accepts::OtherBody}, {"anchor", Accepts::Vector},
+                          {"max_force", Accepts::NonNegative}, {"max_torque", Accepts::NonNegative}})},
+    {"add_pulley", "world:add_pulley{ a = nil_body, b = other, ground_a = {0, 5}, ground_b = {3, 5}, $ }",
+     plus(kJointOptions, {{"anchor_a", Accepts::Vector}, {"anchor_b", Accepts::Vector}, {"ground_a", Accepts::Vector},
+                          {"ground_b", Accepts::Vector}, {"ratio", Accepts::Positive}})},
+    {"add_gear", "world:add_gear{ joint_a = world:add_revolute{ a = nil_body, anchor = {0, 0} }, joint_b = world:add_revolute{ a = other, anchor = {3, 0} }, $ }",
+     plus(kJointOptions, {{"ratio", Accepts::NonZero}, {"joint_a", Accepts::Never}, {"joint_b", Accepts::Never}})},
     {"add_spring", "world:add_spring{ a = nil_body, anchor = {0, 5}, stiffness = 1, $ }",
      {{"a", Accepts::Body}, {"local_a", Accepts::Vector}, {"stiffness", Accepts::NonNegative},
       {"rest_length", Accepts::NonNegative}, {"damping", Accepts::NonNegative}, {"anchor", Accepts::Vector}}},
@@ -144,7 +253,8 @@ const Function kFunctions[] = {
 std::string scene(const std::string& call_line) {
   return "function PopulateWorld(world)\n"
          "  local nil_body = world:add_circle{ radius = 0.5, name = 'first' }\n"
-         "  local other = world:add_circle{ radius = 0.5, position = {3, 0} }\n"
+         "  local other = world:add_circle{ radius = 0.5, position = {3, 0} }; local kin = world:add_box{ width = 1, height = 1, "
+         "type = 'kinematic', position = {-3, 0} }\n"
          "  " + call_line + "\nend";
 }
 
@@ -181,11 +291,12 @@ TEST_CASE("validation: every option of every add_* function, given every pool va
         const std::string source = scene(replace(f.call, std::string(o.name) + " = " + v.lua));
         CAPTURE(source);
         const std::string m = messageOf(source, 2);
+        CAPTURE(m);
         const std::string name = o.name;
         const bool size_or_mass = name == "width" || name == "height" || name == "radius" || name == "mass" ||
                                   name == "density";
         const bool side = name == "width" || name == "height";
-        const bool extreme_size = size_or_mass && finiteNumber(v) && (side || v.x > 0.0) && (v.x < 1e-6 || v.x > 1e6);
+        const bool extreme_size = size_or_mass && o.accepts != Accepts::Never && finiteNumber(v) && (side || v.x > 0.0) && (v.x < 1e-6 || v.x > 1e6);
         if (extreme_size) {
           // A box the core cannot represent (width/height beyond 1e8 : 1) is refused naming a side;
           // a body whose mass or inertia (or their inverses) would not be finite (radius 1e-300,
@@ -245,24 +356,65 @@ TEST_CASE("validation: the scene table's settings, the same way") {
   }
 }
 
-TEST_CASE("validation: writes to every writable body field, the same way") {
-  const Option fields[] = {{"position", Accepts::Vector}, {"angle", Accepts::Finite}, {"velocity", Accepts::Vector},
-                           {"angular_velocity", Accepts::Finite}, {"mass", Accepts::Positive},
-                           {"static", Accepts::Boolean}, {"name", Accepts::String}, {"restitution", Accepts::Unit},
-                           {"friction", Accepts::NonNegative}, {"static_friction", Accepts::NonNegative}};
+// `handle.<field> = <value>` (after `setup`, on the same line) for every value of the pool:
+// accepted iff valid, else an error of "<what>.<field>: ...".
+void checkWrites(const char* what, const std::string& handle, const std::vector<Option>& fields,
+                 const std::string& setup = "") {
   for (const Option& o : fields) {
     for (const Value& v : kPool) {
-      const std::string source = scene(std::string("nil_body.") + o.name + " = " + v.lua);
+      const std::string source = scene(setup + handle + "." + o.name + " = " + v.lua);
       CAPTURE(source);
       const std::string m = messageOf(source, 1);
+      CAPTURE(m);
       if (valid(o.accepts, v)) {
         CHECK(m == "");
       } else {
-        CHECK(m.starts_with(std::string("test.lua:4: body.") + o.name + ": "));
+        CHECK(m.starts_with(std::string("test.lua:4: ") + what + "." + o.name + ": "));
         CHECK(clean(m));
       }
     }
   }
+}
+
+const std::vector<Option> kShapeFields = plus(kMaterialOptions, {{"density", Accepts::Positive}});
+
+TEST_CASE("validation: writes to every writable body field, the same way") {
+  checkWrites("body", "nil_body",
+              plus(plus(kMovingOptions, kMaterialOptions),
+                   {{"mass", Accepts::Positive}, {"static", Accepts::Boolean}, {"type", Accepts::BodyType}}));
+}
+
+TEST_CASE("validation: writes to every writable shape field, the same way") {
+  checkWrites("shape", "nil_body.shapes[1]", kShapeFields);
+}
+
+TEST_CASE("validation: writes to every writable joint field of every kind, the same way") {
+  const std::vector<Option> common = {{"collide_connected", Accepts::Boolean},
+                                      {"break_force", Accepts::PositiveOrInfinity},
+                                      {"break_torque", Accepts::PositiveOrInfinity},
+                                      {"name", Accepts::String}};
+  const std::pair<const char*, std::vector<Option>> joints[] = {
+      {"world:add_revolute{ a = nil_body, anchor = {0, 0}, lower_angle = -1e308, upper_angle = 1e308 }",
+       plus(plus(common, kMotorSpring),
+            {{"lower_angle", Accepts::Finite}, {"upper_angle", Accepts::Finite}, {"max_motor_torque", Accepts::NonNegative}})},
+      {"world:add_prismatic{ a = nil_body, anchor = {0, 0}, axis = {1, 0}, lower = -1e308, upper = 1e308 }",
+       plus(kMotorSpring, {{"lower", Accepts::Finite}, {"upper", Accepts::Finite}, {"max_motor_force", Accepts::NonNegative}})},
+      {"world:add_wheel{ a = nil_body, anchor = {0, 0}, axis = {0, 1}, lower = -1e308, upper = 1e308 }",
+       plus(kMotorSpring, {{"lower", Accepts::Finite}, {"upper", Accepts::Finite}, {"max_motor_torque", Accepts::NonNegative}})},
+      {"world:add_distance{ a = nil_body, b = other }",
+       {{"enable_limit", Accepts::Boolean}, {"enable_spring", Accepts::Boolean}, {"min_length", Accepts::NonNegative},
+        {"max_length", Accepts::NonNegativeOrInfinity}, {"max_spring_force", Accepts::NonNegativeOrInfinity},
+        {"spring_hertz", Accepts::NonNegative}, {"spring_damping", Accepts::NonNegative}}},
+      {"world:add_weld{ a = nil_body, anchor = {0, 0} }",
+       {{"linear_hertz", Accepts::NonNegative}, {"linear_damping", Accepts::NonNegative},
+        {"angular_hertz", Accepts::NonNegative}, {"angular_damping", Accepts::NonNegative}}},
+      {"world:add_motor_joint{ a = nil_body }",
+       {{"linear_offset", Accepts::Vector}, {"angular_offset", Accepts::Finite}, {"linear_velocity", Accepts::Vector},
+        {"angular_velocity", Accepts::Finite}, {"max_force", Accepts::NonNegative}, {"max_torque", Accepts::NonNegative},
+        {"motor_hertz", Accepts::NonNegative}, {"motor_damping", Accepts::NonNegative}}},
+      {"world:add_friction_joint{ a = nil_body }", {{"max_force", Accepts::NonNegative}, {"max_torque", Accepts::NonNegative}}},
+  };
+  for (const auto& [make, fields] : joints) checkWrites("joint", "j", fields, "local j = " + std::string(make) + "; ");
 }
 
 TEST_CASE("validation: polygons: degenerate, too many points, NaN, concave, huge: refused by name or simulated finite") {
@@ -306,6 +458,23 @@ TEST_CASE("validation: misspelt option names are refused, suggesting the closest
       {"world:add_spring{ a = nil_body, anchor = {0, 1}, stiffness = 1, $ = 1 }", lua::api::kSpringOptions},
       {"world:add_damper{ body = nil_body, coefficient = 1, $ = 1 }", lua::api::kDamperOptions},
       {"world:add_force{ body = nil_body, evaluate = function() return 0, 0 end, $ = 1 }", lua::api::kForceOptions},
+      {"world:add_body{ $ = 1 }", lua::api::kBodyOptions},
+      {"world:add_circle{ radius = 1, $ = 1 }", lua::api::kShapeOptions},
+      {"world:add_capsule{ a = {0, 0}, b = {1, 0}, radius = 1, $ = 1 }", lua::api::kCapsuleOptions},
+      {"world:add_chain{ points = {{0, 0}, {1, 0}}, $ = 1 }", lua::api::kChainOptions},
+      {"world:add_polygon{ vertices = {{0, 0}, {1, 0}, {0, 1}}, $ = 1 }", lua::api::kPolygonOptions},
+      {"nil_body:add_shape{ shape = 'circle', radius = 1, $ = 1 }", lua::api::kAddShapeOptions},
+      {"kin:set_target{ time = 1, $ = 1 }", lua::api::kTargetOptions},
+      {"world:add_revolute{ a = nil_body, anchor = {0, 0}, $ = 1 }", lua::api::kRevoluteOptions},
+      {"world:add_revolute{ a = nil_body, anchor = {0, 0}, $ = 1 }", lua::api::kJointOptions},
+      {"world:add_prismatic{ a = nil_body, anchor = {0, 0}, axis = {1, 0}, $ = 1 }", lua::api::kPrismaticOptions},
+      {"world:add_distance{ a = nil_body, b = other, $ = 1 }", lua::api::kDistanceOptions},
+      {"world:add_weld{ a = nil_body, anchor = {0, 0}, $ = 1 }", lua::api::kWeldOptions},
+      {"world:add_wheel{ a = nil_body, anchor = {0, 0}, axis = {0, 1}, $ = 1 }", lua::api::kWheelOptions},
+      {"world:add_motor_joint{ a = nil_body, $ = 1 }", lua::api::kMotorJointOptions},
+      {"world:add_friction_joint{ a = nil_body, $ = 1 }", lua::api::kFrictionJointOptions},
+      {"world:add_pulley{ a = nil_body, b = other, ground_a = {0, 5}, ground_b = {3, 5}, $ = 1 }", lua::api::kPulleyOptions},
+      {"world:add_gear{ $ = 1 }", lua::api::kGearOptions},
   };
   int n = 0;
   for (const auto& [call, names] : functions) {

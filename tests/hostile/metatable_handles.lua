@@ -1,6 +1,6 @@
 -- Host metatables: getmetatable of a world, body, force, spring or draw handle returned sol2's real,
 -- writable metatable; calling its __gc by hand corrupted the heap. Every handle's metatable is
--- locked, and no field or iteration reaches it.
+-- locked (shape and joint handles too), and no field or iteration reaches it.
 -- expect: every handle is locked
 local function locked(x, what)
   assert(getmetatable(x) == false, what .. ": getmetatable is " .. tostring(getmetatable(x)))
@@ -20,6 +20,8 @@ function PopulateWorld(world)
   locked(world:add_force{ body = b, evaluate = function() return 0, 0 end }, "force")
   locked(world:add_spring{ a = b, b = other, stiffness = 1 }, "spring")
   locked(world:add_damper{ body = b, coefficient = 1 }, "damper")
+  locked(b.shapes[1], "shape")
+  locked(world:add_revolute{ a = b, b = other, anchor = {1.5, 0} }, "joint")
   print("every handle is locked")
 end
 function OnDraw(draw) locked(draw, "draw") end

@@ -2,6 +2,7 @@
 // implement: every field, method and option name, in both directions.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <map>
 #include <cctype>
@@ -23,7 +24,8 @@ std::string identifier(std::string_view s) {
 }
 
 // class name → the names its ---@field lines and `function Class:name(` definitions declare.
-std::map<std::string, std::set<std::string>> annotated() {
+// `writable` gets the fields whose comment says "(read/write)".
+std::map<std::string, std::set<std::string>> annotated(std::map<std::string, std::set<std::string>>* writable = nullptr) {
   std::ifstream in(scriptsDirectory() / "meta" / "rigidlab.lua");
   REQUIRE(in);
   std::map<std::string, std::set<std::string>> classes;
@@ -35,6 +37,7 @@ std::map<std::string, std::set<std::string>> annotated() {
       classes[current];
     } else if (l.starts_with("---@field ") && !current.empty()) {
       classes[current].insert(identifier(l.substr(10)));
+      if (writable && l.ends_with("(read/write)")) (*writable)[current].insert(identifier(l.substr(10)));
     } else if (l.starts_with("function ") && l.find(':') != std::string_view::npos) {
       const size_t colon = l.find(':');
       classes[identifier(l.substr(9))].insert(identifier(l.substr(colon + 1)));
@@ -57,17 +60,54 @@ std::set<std::string> names(std::initializer_list<const std::vector<std::string_
 TEST_CASE("the editor annotations list exactly the API's names") {
   const auto classes = annotated();
   CHECK(classes.at("Body") == names({&api::kBodyReadable}));
+  CHECK(classes.at("Shape") == names({&api::kShapeReadable}));
   CHECK(classes.at("World") == names({&api::kWorldFields, &api::kWorldMethods}));
   CHECK(classes.at("BodyOptions") == names({&api::kBodyOptions}));
-  CHECK(classes.at("BoxOptions") == std::set<std::string>{"width", "height"});
-  CHECK(classes.at("CircleOptions") == std::set<std::string>{"radius"});
-  CHECK(classes.at("PolygonOptions") == std::set<std::string>{"vertices"});
+  CHECK(classes.at("ShapeOptions") == names({&api::kShapeOptions}));
+  CHECK(classes.at("ShapedBodyOptions") == names({&api::kShapedBodyOptions}));
+  CHECK(classes.at("BoxOptions") == names({&api::kBoxOptions}));
+  CHECK(classes.at("CircleOptions") == names({&api::kCircleOptions}));
+  CHECK(classes.at("PolygonOptions") == names({&api::kPolygonOptions}));
+  CHECK(classes.at("CapsuleOptions") == names({&api::kCapsuleOptions}));
+  CHECK(classes.at("SegmentOptions") == names({&api::kSegmentOptions}));
+  CHECK(classes.at("ChainOptions") == names({&api::kChainOptions}));
+  CHECK(classes.at("AddShapeOptions") == names({&api::kAddShapeOptions}));
+  CHECK(classes.at("TargetOptions") == names({&api::kTargetOptions}));
   CHECK(classes.at("SpringOptions") == names({&api::kSpringOptions}));
   CHECK(classes.at("DamperOptions") == names({&api::kDamperOptions}));
   CHECK(classes.at("ForceOptions") == names({&api::kForceOptions}));
   CHECK(classes.at("SceneSettings") == names({&api::kSceneOptions}));
+  CHECK(classes.at("JointOptions") == names({&api::kJointOptions}));
+  CHECK(classes.at("RevoluteOptions") == names({&api::kRevoluteOptions}));
+  CHECK(classes.at("PrismaticOptions") == names({&api::kPrismaticOptions}));
+  CHECK(classes.at("DistanceOptions") == names({&api::kDistanceOptions}));
+  CHECK(classes.at("WeldOptions") == names({&api::kWeldOptions}));
+  CHECK(classes.at("WheelOptions") == names({&api::kWheelOptions}));
+  CHECK(classes.at("MotorJointOptions") == names({&api::kMotorJointOptions}));
+  CHECK(classes.at("FrictionJointOptions") == names({&api::kFrictionJointOptions}));
+  CHECK(classes.at("PulleyOptions") == names({&api::kPulleyOptions}));
+  CHECK(classes.at("GearOptions") == names({&api::kGearOptions}));
   CHECK(classes.at("Draw") == std::set<std::string>{"line", "circle", "text"});
   CHECK(classes.at("ExactState") == std::set<std::string>{"position", "velocity", "angle", "angular_velocity"});
   CHECK(classes.at("BodyState") ==
         std::set<std::string>{"position", "velocity", "center", "angle", "angular_velocity", "mass", "inertia", "time"});
+
+  // A joint handle: the common fields and every kind's own.
+  std::set<std::string> joint = names({&api::kJointReadable});
+  for (const auto* options : api::kJointKindOptions)
+    for (std::string_view n : api::jointOwnFields(*options)) joint.insert(std::string(n));
+  CHECK(classes.at("Joint") == joint);
+}
+
+TEST_CASE("the editor annotations mark exactly the writable fields (read/write)") {
+  std::map<std::string, std::set<std::string>> writable;
+  annotated(&writable);
+  CHECK(writable.at("Body") == names({&api::kBodyWritable}));
+  CHECK(writable.at("Shape") == names({&api::kShapeWritable}));
+  std::set<std::string> joint = names({&api::kJointWritable});
+  for (const auto* options : api::kJointKindOptions)
+    for (std::string_view n : api::jointOwnFields(*options))
+      if (std::find(api::kJointReadOnly.begin(), api::kJointReadOnly.end(), n) == api::kJointReadOnly.end())
+        joint.insert(std::string(n));
+  CHECK(writable.at("Joint") == joint);
 }

@@ -53,6 +53,24 @@ double luaOscillatorError(double dt) {
   return err;
 }
 
+// A scene that fails: loaded (and stepped `steps` times), it must end with one line that starts
+// with `message`.
+struct Case {
+  const char* source;
+  int steps;
+  const char* message;
+};
+
+void checkMessages(const std::vector<Case>& cases) {
+  for (const Case& c : cases) {
+    CAPTURE(c.source);
+    const std::string message = errorOf(c.source, c.steps);
+    // One line, starting with the expected text (require's message goes on to list the folders).
+    CHECK(message.find('\n') == std::string::npos);
+    CHECK(message.substr(0, std::string(c.message).size()) == c.message);
+  }
+}
+
 }  // namespace
 
 TEST_CASE("a scene without Lua forces makes no call into Lua during a step") {
@@ -135,12 +153,7 @@ TEST_CASE("runs are deterministic: math.random is seeded by the host, body order
 }
 
 TEST_CASE("every scene mistake is one message: file:line: function: what, with the bad value") {
-  struct Case {
-    const char* source;
-    int steps;
-    const char* message;
-  };
-  const Case cases[] = {
+  checkMessages({
       {"function PopulateWorld(world)\n  world:add_circle{ radius = -1 }\nend", 0,
        "test.lua:2: add_circle: radius must be > 0, got -1"},
       {"function PopulateWorld(world)\n  world:add_box{ widht = 1, height = 2 }\nend", 0,
@@ -154,8 +167,8 @@ TEST_CASE("every scene mistake is one message: file:line: function: what, with t
       {"function PopulateWorld(world)\n  world:add_box{ width = 1, height = 1, restitution = 1.5 }\nend", 0,
        "test.lua:2: add_box: restitution must be between 0 and 1, got 1.5"},
       {"function PopulateWorld(world)\n  world:add_polygon{ vertices = {{0,0},{1,0},{1,1},{0.5,0.2},{0,1}} }\nend", 0,
-       "test.lua:2: add_polygon: polygon is not convex: it turns clockwise at vertices[4] (0.5, 0.2) (split concave "
-       "shapes into convex pieces)"},
+       "test.lua:2: add_polygon: polygon is not convex: it turns clockwise at vertices[4] (0.5, 0.2) (give concave = "
+       "true to make the body of convex pieces)"},
       {"function PopulateWorld(world)\n  world:add_polygon{ vertices = {{0,0},{1,0},'x'} }\nend", 0,
        "test.lua:2: add_polygon: vertices[3] must be a point {x, y}, got \"x\""},
       {"function PopulateWorld(world)\n  world:add_spring{ a = 5, anchor = {0, 0}, stiffness = 1 }\nend", 0,
@@ -211,14 +224,124 @@ TEST_CASE("every scene mistake is one message: file:line: function: what, with t
        "test.lua:2: PopulateWorld: load: only text chunks can be loaded (mode \"t\"), got mode \"b\""},
       {"function PopulateWorld(world)\n  os.execute('true')\nend", 0,
        "test.lua:2: PopulateWorld: attempt to index a nil value (global 'os')"},
-  };
-  for (const Case& c : cases) {
-    CAPTURE(c.source);
-    const std::string message = errorOf(c.source, c.steps);
-    // One line, starting with the expected text (require's message goes on to list the folders).
-    CHECK(message.find('\n') == std::string::npos);
-    CHECK(message.substr(0, std::string(c.message).size()) == c.message);
+  });
+}
+
+TEST_CASE("shape, body type and joint mistakes are one message: file:line: function: the field and the value") {
+  // Line 2 makes what line 3 uses.
+  checkMessages({
+      {"function PopulateWorld(world)\n  world:add_capsule{ a = {0, 0}, b = {1, 0}, radius = -1 }\nend", 0,
+       "test.lua:2: add_capsule: radius must be > 0, got -1"},
+      {"function PopulateWorld(world)\n  world:add_segment{ a = {0, 0}, b = {1, 0}, type = 'dynamic' }\nend", 0,
+       "test.lua:2: add_segment: type \"dynamic\" is refused: a segment has no area, so only a static or kinematic "
+       "body may have one (use a capsule or a thin box)"},
+      {"function PopulateWorld(world)\n  world:add_chain{ points = {{0, 0}} }\nend", 0,
+       "test.lua:2: add_chain: points needs at least 2 points, got 1"},
+      {"function PopulateWorld(world)\n  world:add_chain{ points = {{0, 0}, 'x'} }\nend", 0,
+       "test.lua:2: add_chain: points[2] must be a point {x, y}, got \"x\""},
+      {"function PopulateWorld(world)\n  world:add_chain{ points = {{0, 0}, {1, 0}}, density = 2 }\nend", 0,
+       "test.lua:2: add_chain: density cannot be given: a segment or chain has no area, so no density or mass"},
+      {"function PopulateWorld(world)\n  world:add_box{ width = 1, height = 1, static = true, velocity = {1, 0} }\nend", 0,
+       "test.lua:2: add_box: velocity must be zero for a static body, got (1, 0) (a static body cannot move: make it "
+       "type = \"kinematic\" to move it by its velocity)"},
+      {"function PopulateWorld(world)\n  local b = world:add_box{ width = 1, height = 1, static = true }\n  b.velocity = {0, 2}\nend",
+       0, "test.lua:3: body.velocity: a static body cannot move, got (0, 2): make it kinematic (body.type = \"kinematic\") "
+          "to give it a velocity"},
+      {"function PopulateWorld(world)\n  world:add_circle{ radius = 1, type = 'kinetic' }\nend", 0,
+       "test.lua:2: add_circle: type must be \"static\", \"kinematic\" or \"dynamic\", got \"kinetic\""},
+      {"function PopulateWorld(world)\n  world:add_circle{ radius = 1, category = 0.5 }\nend", 0,
+       "test.lua:2: add_circle: category must be an integer set of bits (e.g. 1 << 3, 0x8 or -1 for all 64), got 0.5"},
+      {"function PopulateWorld(world)\n  world:add_circle{ radius = 1, group = 1 << 40 }\nend", 0,
+       "test.lua:2: add_circle: group must be between -2147483648 and 2147483647, got 1099511627776"},
+      {"function PopulateWorld(world)\n  world:add_body{ friction = 1 }\nend", 0,
+       "test.lua:2: add_body: friction is an option of a shape, and add_body makes a body without shapes: give it to "
+       "body:add_shape{...}"},
+      {"function PopulateWorld(world)\n  local b = world:add_body{}\n  b:add_shape{ shape = 'circle', radus = 1 }\nend", 0,
+       "test.lua:3: add_shape: unknown option 'radus' (did you mean 'radius'?)"},
+      {"function PopulateWorld(world)\n  local b = world:add_body{}\n  b:add_shape{ radius = 1 }\nend", 0,
+       "test.lua:3: add_shape: shape is required: \"circle\", \"box\", \"polygon\", \"capsule\" or \"segment\""},
+      {"function PopulateWorld(world)\n  local b = world:add_body{}\n  b:add_shape{ shape = 'box', width = 1, height = 1, "
+       "radius = 2 }\nend",
+       0, "test.lua:3: add_shape: radius is not an option of a box shape (it takes width, height, offset and angle)"},
+      {"function PopulateWorld(world)\n  local b = world:add_body{}\n  b:add_shape{ shape = 'box', width = 1e308, height = 1e308, "
+       "offset = {1.7e308, 0} }\nend",
+       0, "test.lua:3: add_shape: offset (1.7e+308, 0) puts the shape out of range"},
+      {"function PopulateWorld(world)\n  local b = world:add_polygon{ vertices = {{0,0},{2,0},{2,1},{1,1},{1,2},{0,2}}, "
+       "concave = true }\n  print(b.vertices)\nend",
+       0, "test.lua:3: body.vertices: the body has 2 shapes; read body.shapes[i].vertices"},
+      {"function PopulateWorld(world)\n  local b = world:add_circle{ radius = 1 }\n  b:set_target{ time = 1 }\nend", 0,
+       "test.lua:3: set_target: moves kinematic bodies, and this one is dynamic (make it type = \"kinematic\")"},
+      {"function PopulateWorld(world)\n  local b = world:add_circle{ radius = 1 }\n  local s = b.shapes[1]\n  s:remove()\n"
+       "  world:remove(s)\nend",
+       0, "test.lua:5: remove: the shape was removed (by shape:remove() or with its body)"},
+      {"function PopulateWorld(world)\n  local b = world:add_circle{ radius = 1 }\n  world:add_revolute{ a = b, anchor = "
+       "{0, 0}, lower_angle = 1, upper_angle = 0 }\nend",
+       0, "test.lua:3: add_revolute: lower_angle (1) must not exceed upper_angle (0)"},
+      {"function PopulateWorld(world)\n  local b = world:add_circle{ radius = 1 }\n  world:add_wheel{ a = b, anchor = "
+       "{0, 0}, axis = {0, 0} }\nend",
+       0, "test.lua:3: add_wheel: axis must not be zero, got (0, 0)"},
+      {"function PopulateWorld(world)\n  local b = world:add_circle{ radius = 1, static = true }\n  world:add_weld{ a = b, "
+       "anchor = {0, 0} }\nend",
+       0, "test.lua:3: add_weld: a and b are both static or kinematic (a: body (id 1), static; b: the world): at least one "
+          "of the joint's bodies must be dynamic (a joint between static or kinematic bodies does nothing)"},
+      {"function PopulateWorld(world)\n  local b = world:add_circle{ radius = 1 }\n  world:add_gear{ joint_a = "
+       "world:add_revolute{ a = b, anchor = {0, 0} }, joint_b = world:add_weld{ a = b, anchor = {0, 0} } }\nend",
+       0, "test.lua:3: add_gear: joint_b must be a revolute or prismatic joint, got a weld joint"},
+      {"function PopulateWorld(world)\n  local b = world:add_circle{ radius = 1 }\n  world:add_distance{ a = b }\nend", 0,
+       "test.lua:3: add_distance: anchor_b is required"},
+      {"function PopulateWorld(world)\n  local b = world:add_circle{ radius = 1 }\n  world:add_weld{ a = b, anchor = {0, 0}, "
+       "break_force = -1 }\nend",
+       0, "test.lua:3: add_weld: break_force must be > 0, got -1"},
+      {"function PopulateWorld(world)\n  local b = world:add_circle{ radius = 1 }\n  world:add_prismatic{ a = b, anchor = "
+       "{0, 0}, axis = {1, 0}, max_motor_torque = 1 }\nend",
+       0, "test.lua:3: add_prismatic: unknown option 'max_motor_torque' (did you mean 'max_motor_force'?)"},
+      {"function PopulateWorld(world)\n  local j = world:add_prismatic{ a = world:add_circle{ radius = 1 }, anchor = {0, 0}, "
+       "axis = {1, 0} }\n  j.upper_angle = 1\nend",
+       0, "test.lua:3: prismatic joint: has no field 'upper_angle' (did you mean 'upper'?)"},
+      {"function PopulateWorld(world)\n  local j = world:add_revolute{ a = world:add_circle{ radius = 1 }, anchor = {0, 0} }\n"
+       "  j.motor_speed = 'fast'\nend",
+       0, "test.lua:3: joint.motor_speed: must be a number, got \"fast\""},
+      {"function PopulateWorld(world)\n  local b = world:add_circle{ radius = 1 }\n  world:add_force{ body = b, evaluate = "
+       "function(s)\n    world:add_revolute{ a = b, anchor = {0, 0} } return 0, 0 end }\nend",
+       1, "test.lua:4: add_revolute: not allowed while the world is stepping (from inside a force)"},
+      {"function PopulateWorld(world)\n  local b = world:add_circle{ radius = 1 }\n  world:add_force{ body = b, evaluate = "
+       "function(s)\n    b.shapes[1].friction = 0 return 0, 0 end }\nend",
+       1, "test.lua:4: shape.friction: not allowed while the world is stepping (from inside a force)"},
+  });
+}
+
+TEST_CASE("joints count against the scene's memory limit, and removed ones are given back") {
+  lua::SceneOptions options;
+  options.limits.memory_bytes = size_t{8} << 20;
+  // 8 MiB hold a few thousand joints: a loop that makes joints ends with the memory message...
+  std::string message;
+  try {
+    load("function PopulateWorld(world)\n  local a = world:add_circle{ radius = 1 }\n  local b = world:add_circle{ radius = 1, "
+         "position = {3, 0} }\n  while true do world:add_weld{ a = a, b = b, anchor = {1, 0} } end\nend",
+         options);
+  } catch (const SceneError& e) {
+    message = e.what();
   }
+  CHECK(message.starts_with("test.lua:4: add_weld: not enough memory (the scene's limit is 8 MiB)"));
+  // ... while one that removes what it makes runs as long as it likes.
+  auto scene = load("function PopulateWorld(world)\n  local a = world:add_circle{ radius = 1 }\n  for i = 1, 20000 do\n"
+                    "    world:add_weld{ a = a, anchor = {0, 0} }:remove()\n  end\nend",
+                    options);
+  CHECK(scene->world().jointIds().empty());
+}
+
+TEST_CASE("a broken joint's handle says broken after the step that broke it") {
+  auto scene = load(R"lua(
+    function PopulateWorld(world)
+      local shelf = world:add_box{ width = 1, height = 0.1, position = {0.5, 0} }
+      bracket = world:add_weld{ a = shelf, anchor = {0, 0}, break_force = 0.5 }  -- it weighs 0.98 N
+    end
+    function Check(world)
+      assert(bracket.broken and bracket.removed, "not broken")
+    end)lua");
+  scene->step();
+  CHECK(scene->world().jointIds().empty());
+  scene->runCheck();
 }
 
 TEST_CASE("a Lua force that fails leaves the world as it was before the step") {

@@ -16,25 +16,8 @@ cp "$SCENES/interact.lua" "$scene"
 
 cat > "$WORK/drive.sh" <<'DRIVE'
 set -u
-rigidlab=$1 scene=$2 work=$3
-"$rigidlab" "$scene" --frames 100000 --screenshot "$work/final.png" > "$work/out.txt" 2> "$work/stderr.txt" &
-pid=$!
-xdotool search --sync --name rigidlab > /dev/null
-sleep 0.8
-step() { sleep 0.35; }
-drag() {  # x0 y0 x1 y1 hold_seconds
-  xdotool mousemove "$1" "$2"; step
-  xdotool mousedown 1; sleep 0.1
-  for i in 1 2 3 4 5 6 7 8; do
-    xdotool mousemove $(( $1 + ($3 - $1) * i / 8 )) $(( $2 + ($4 - $2) * i / 8 )); sleep 0.03
-  done
-  sleep "$5"
-  xdotool mouseup 1; step
-}
-click() { xdotool mousemove "$1" "$2"; sleep 0.1; xdotool click 1; step; }
-key() { xdotool key "$@"; step; }
-# Dear ImGui 1.86 samples key state once per frame: a key it must see (in a dialog) is held a while.
-hold() { xdotool keydown "$1"; sleep 0.15; xdotool keyup "$1"; step; }
+source "$4"  # xdotool.sh
+open_window "$1" "$2" "$3"
 
 drag 784 360 784 216 1.5        # running: pull the ball to (2, 2)
 sleep 0.5
@@ -51,20 +34,10 @@ key ctrl+z                      # undone again: B absent
 key 1                           # select tool
 click 784 216                   # select the ball (at (2, 2))
 key t                           # static
-key ctrl+s                      # save dialog with a new name
-hold Return
-sleep 0.5
-kill -TERM $pid                 # close: the last frame is the screenshot
-wait $pid
-echo "exit $?" >> "$work/out.txt"
+save_and_close "$3"             # Ctrl+S, Enter: saved under a new name
 DRIVE
-xvfb-run -a -s "-screen 0 1280x720x24" bash "$WORK/drive.sh" "$RIGIDLAB" "$scene" "$WORK" || true
-cp "$WORK/out.txt" "$WORK/log.txt"
-
-grep -q "^exit 0$" "$WORK/out.txt" || fail "the sandbox did not exit cleanly: $(tail -n 1 "$WORK/out.txt")"
 saved="$WORK/interact_saved.lua"
-grep -q "^saved $saved$" "$WORK/out.txt" || fail "no 'saved $saved' line"
-[ -f "$WORK/final.png" ] || { fail "no screenshot"; finish; }
+drive "$scene" "$saved"
 
 check_picture() {  # IMAGE LABEL
   expect_pixel "$1" 764 236 "$STATIC" "$2: the ball, pulled to (2, 2) and made static"

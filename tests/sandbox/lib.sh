@@ -99,6 +99,18 @@ atomic_write() {
   mv -f "$tmp" "$1"
 }
 
+# drive SCENE SAVED: runs $WORK/drive.sh (its arguments: rigidlab, SCENE, $WORK and xdotool.sh, whose
+# helpers it uses) under Xvfb, then checks that the sandbox exited cleanly, said "saved SAVED" and
+# left its last frame in $WORK/final.png.
+drive() {
+  xvfb-run -a -s "-screen 0 1280x720x24" bash "$WORK/drive.sh" "$RIGIDLAB" "$1" "$WORK" \
+    "$(dirname "${BASH_SOURCE[0]}")/xdotool.sh" || true
+  cp "$WORK/out.txt" "$WORK/log.txt"
+  grep -q "^exit 0$" "$WORK/out.txt" || fail "the sandbox did not exit cleanly: $(tail -n 1 "$WORK/out.txt")"
+  grep -q "^saved $2$" "$WORK/out.txt" || fail "no 'saved $2' line"
+  [ -f "$WORK/final.png" ] || { fail "no screenshot"; finish; }
+}
+
 finish() {
   if [ "$FAILURES" -gt 0 ]; then
     echo "--- sandbox stdout"; cat "$WORK/log.txt" 2>/dev/null || true

@@ -6,7 +6,7 @@
 using namespace rigidlab;
 using namespace rigidlab::sandbox;
 
-TEST_CASE("energy history: linear + rotational is the world's kinetic energy; total includes potential") {
+TEST_CASE("energy history: linear + rotational is the world's kinetic energy, total includes potential") {
   World world;
   BodyDef d;
   d.shape = makeBox(1, 2);
@@ -16,6 +16,8 @@ TEST_CASE("energy history: linear + rotational is the world's kinetic energy; to
   world.createBody(d);
   d.type = BodyType::Static;
   d.position = Vec2(0, -5);
+  d.velocity = Vec2::Zero();  // a static body cannot move
+  d.angular_velocity = 0.0;
   world.createBody(d);
   EnergyHistory h;
   h.sample(world);

@@ -56,7 +56,7 @@ Reports pollFor(FileWatcher& w, std::chrono::milliseconds window, Clock::time_po
 
 }  // namespace
 
-TEST_CASE("file watcher: in-place save, once, within 200 ms; no report without a change") {
+TEST_CASE("file watcher: in-place save, once, within 200 ms, no report without a change") {
   TempDir dir;
   const fs::path scene = dir.path / "scene.lua";
   write(scene, "a = 1");
@@ -157,7 +157,7 @@ TEST_CASE("file watcher: touch, identical rewrites, temporaries and swap files a
   CHECK(pollFor(w, 300ms).count == 0);
 }
 
-TEST_CASE("file watcher: modules in other directories; changed() names the file") {
+TEST_CASE("file watcher: modules in other directories, changed() names the file") {
   TempDir a, b;
   const fs::path scene = a.path / "scene.lua", module = b.path / "helpers.lua";
   write(scene, "require('helpers')");

@@ -91,7 +91,7 @@ Vec2 position(const World& w, const char* name) { return w.body(*w.findBody(name
 
 }  // namespace
 
-TEST_CASE("session: a scene opens with its camera; a broken start shows the error and loads once fixed") {
+TEST_CASE("session: a scene opens with its camera, a broken start shows the error and loads once fixed") {
   TempDir dir;
   const fs::path file = dir.path / "ball.lua";
   write(file, kBallScene);
@@ -262,26 +262,44 @@ TEST_CASE("session: tools add, drag, move, delete and toggle bodies, all undoabl
   handleEvent(s, key(SDLK_RETURN), {});
   REQUIRE(s.world().bodyCount() == 5);
   CHECK(s.world().shape(s.world().body(s.selected).shapes[0]).geometry.vertices.size() == 3);
-  // A concave outline is refused with a message; the points stay to be fixed.
+  // A concave outline becomes a compound body of convex pieces (never its hull).
   click(s, Vec2(-8, 0));
   click(s, Vec2(-6, 0));
   click(s, Vec2(-7, 0.2));
   click(s, Vec2(-7, 2));
   handleEvent(s, key(SDLK_RETURN), {});
-  CHECK(s.world().bodyCount() == 5);
-  CHECK(s.status.find("polygon") != std::string::npos);
+  REQUIRE(s.world().bodyCount() == 6);
+  const Body& concave = s.world().body(s.selected);
+  CHECK(concave.shapes.size() == 2);
+  CHECK(concave.area == doctest::Approx(1.1).epsilon(0.02));  // the outline's area, not its hull's (2)
+  CHECK(s.tools.polygon.empty());
+  CHECK(s.undo.undoLabel() == "add concave polygon (2 convex pieces)");
+  // One that crosses itself is refused with a message; the points stay to be fixed.
+  click(s, Vec2(-8, 4));
+  click(s, Vec2(-6, 6));
+  click(s, Vec2(-6, 4));
+  click(s, Vec2(-8, 6));
+  handleEvent(s, key(SDLK_RETURN), {});
+  CHECK(s.world().bodyCount() == 6);
+  CHECK(s.status.find("cannot make that polygon: outline crosses itself") != std::string::npos);
+  CHECK(s.tools.polygon.size() == 4);
   handleEvent(s, key(SDLK_ESCAPE), {});
   CHECK(s.tools.polygon.empty());
 
-  // Select tool, running: dragging the ball pulls it towards the cursor with a mouse force.
+  // Select tool, running: dragging the ball pulls it towards the cursor with a motor joint.
   handleEvent(s, key(SDLK_1), {});
   const Vec2 ball = position(s.world(), "ball");
   const Vec2 grab = s.camera.worldToScreen(ball), target = s.camera.worldToScreen(ball + Vec2(0, 3));
   handleEvent(s, mouse(SDL_MOUSEMOTION, grab), {});
   handleEvent(s, mouse(SDL_MOUSEBUTTONDOWN, grab), {});
   CHECK(s.tools.gesture == ToolState::Gesture::Drag);
-  const size_t forces = s.world().forceIds().size();
-  CHECK(forces == 1);
+  CHECK(s.world().forceIds().empty());
+  REQUIRE(s.world().jointIds().size() == 1);
+  const JointDef& drag = s.world().joint(s.world().jointIds()[0]);
+  CHECK(drag.type == JointType::Motor);
+  CHECK(drag.a.isNull());  // the world
+  CHECK(drag.max_force == doctest::Approx(100.0 * s.world().body(*s.world().findBody("ball")).mass * 9.80665));
+  CHECK(drag.motor_hertz == 5.0);
   handleEvent(s, mouse(SDL_MOUSEMOTION, target), {});
   for (int i = 0; i < 30; ++i) {
     updateTools(s);
@@ -289,7 +307,7 @@ TEST_CASE("session: tools add, drag, move, delete and toggle bodies, all undoabl
   }
   CHECK(position(s.world(), "ball").y() > ball.y() + 1.0);
   handleEvent(s, mouse(SDL_MOUSEBUTTONUP, target), {});
-  CHECK(s.world().forceIds().empty());
+  CHECK(s.world().jointIds().empty());
 
   // Paused: a drag moves the body; undo puts it back.
   handleEvent(s, key(SDLK_SPACE), {});
@@ -324,6 +342,108 @@ TEST_CASE("session: tools add, drag, move, delete and toggle bodies, all undoabl
   // Events ImGui wants are not ours.
   handleEvent(s, key(SDLK_DELETE), InputCapture{false, true});
   CHECK(s.world().bodyCount() == count);
+}
+
+TEST_CASE("session: capsule tool, joint tool (two bodies, or a body and the world), joints selected and deleted, undoable") {
+  TempDir dir;
+  const fs::path file = dir.path / "ball.lua";
+  write(file, kBallScene);
+  Session s;
+  s.camera.resize(1280, 720);
+  startSession(s, file);
+  s.paused = true;
+
+  // Capsule tool: a click makes one of the panel's size, a drag one from end to end.
+  handleEvent(s, key(SDLK_5), {});
+  CHECK(s.tools.tool == Tool::Capsule);
+  click(s, Vec2(-3, 2));
+  REQUIRE(s.world().bodyCount() == 3);
+  const BodyId first = s.selected;
+  const Shape& cap = s.world().shape(s.world().body(first).shapes[0]).geometry;
+  CHECK(cap.type == ShapeType::Capsule);
+  CHECK((cap.vertices[1] - cap.vertices[0]).norm() == doctest::Approx(s.tools.capsule_length));
+  CHECK(cap.radius == s.tools.capsule_radius);
+  const Vec2 a = s.camera.worldToScreen(Vec2(2, 2)), b = s.camera.worldToScreen(Vec2(4, 3));
+  handleEvent(s, mouse(SDL_MOUSEMOTION, a), {});
+  handleEvent(s, mouse(SDL_MOUSEBUTTONDOWN, a), {});
+  handleEvent(s, mouse(SDL_MOUSEMOTION, b), {});
+  handleEvent(s, mouse(SDL_MOUSEBUTTONUP, b), {});
+  REQUIRE(s.world().bodyCount() == 4);
+  const BodyId second = s.selected;
+  const Body& dragged = s.world().body(second);
+  const Shape& long_cap = s.world().shape(dragged.shapes[0]).geometry;
+  CHECK(dragged.xf.apply(long_cap.vertices[1]).x() == doctest::Approx(4).epsilon(0.02));
+  CHECK((long_cap.vertices[1] - long_cap.vertices[0]).norm() == doctest::Approx(std::sqrt(5.0)).epsilon(0.02));
+
+  // Joint tool, revolute: the first capsule, then empty space: pinned to the world there.
+  handleEvent(s, key(SDLK_6), {});
+  CHECK(s.tools.tool == Tool::Joint);
+  click(s, Vec2(-3, 2));
+  CHECK(s.tools.joint_body == first);
+  click(s, Vec2(-3.5, 2));
+  REQUIRE(s.world().jointIds().size() == 1);
+  const JointId pin = s.selected_joint;
+  REQUIRE(s.world().isValid(pin));
+  CHECK(s.world().joint(pin).type == JointType::Revolute);
+  CHECK(s.world().joint(pin).a.isNull());  // the world is body a, as the scene API has it
+  CHECK(s.world().joint(pin).b == first);
+  CHECK(s.world().joint(pin).anchor_a.x() == doctest::Approx(-3.5).epsilon(0.02));
+  // Distance: from a point on the first capsule to a point on the second.
+  s.tools.joint_kind = JointType::Distance;
+  click(s, Vec2(-2.6, 2));
+  click(s, Vec2(3, 2.5));
+  REQUIRE(s.world().jointIds().size() == 2);
+  const JointDef& rod = s.world().joint(s.selected_joint);
+  CHECK(rod.type == JointType::Distance);
+  CHECK(rod.a == first);
+  CHECK(rod.b == second);
+  CHECK(rod.length == doctest::Approx(5.6 * std::sqrt(1 + 0.25 / 31.36)).epsilon(0.02));
+  // A click on nothing first only says what to do.
+  click(s, Vec2(8, 8));
+  CHECK(s.tools.joint_body.isNull());
+  CHECK(s.status.find("click a body first") != std::string::npos);
+
+  // Select tool: a click on an anchor selects the joint; Delete deletes it; undo brings it back.
+  handleEvent(s, key(SDLK_1), {});
+  click(s, Vec2(-3.5, 2));
+  CHECK(s.selected_joint == pin);
+  CHECK(s.selected.isNull());
+  handleEvent(s, key(SDLK_DELETE), {});
+  CHECK(s.world().jointIds().size() == 1);
+  CHECK(s.world().bodyCount() == 4);
+  handleEvent(s, key(SDLK_z, KMOD_LCTRL), {});
+  REQUIRE(s.world().jointIds().size() == 2);
+  REQUIRE(s.world().isValid(s.selected_joint));
+  CHECK(s.world().joint(s.selected_joint).type == JointType::Revolute);
+
+  // Deleting a body takes its joints; undo brings the body and both joints back.
+  select(s, first);
+  handleEvent(s, key(SDLK_DELETE), {});
+  CHECK(s.world().bodyCount() == 3);
+  CHECK(s.world().jointIds().empty());
+  handleEvent(s, key(SDLK_z, KMOD_LCTRL), {});
+  CHECK(s.world().bodyCount() == 4);
+  CHECK(s.world().jointIds().size() == 2);
+  handleEvent(s, key(SDLK_y, KMOD_LCTRL), {});
+  CHECK(s.world().jointIds().empty());
+  handleEvent(s, key(SDLK_z, KMOD_LCTRL), {});
+  CHECK(s.world().jointIds().size() == 2);
+
+  // The saved world has the joints, not the mouse's.
+  s.paused = false;
+  handleEvent(s, key(SDLK_1), {});
+  const Vec2 grab = s.camera.worldToScreen(position(s.world(), "ball"));
+  handleEvent(s, mouse(SDL_MOUSEMOTION, grab), {});
+  handleEvent(s, mouse(SDL_MOUSEBUTTONDOWN, grab), {});
+  REQUIRE(s.world().jointIds().size() == 3);
+  std::string message;
+  REQUIRE(saveWorld(s, dir.path / "joined.lua", message));
+  CHECK(s.world().jointIds().size() == 2);  // the save ended the drag
+  std::ifstream in(dir.path / "joined.lua");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  CHECK(text.find("kind = \"revolute\"") != std::string::npos);
+  CHECK(text.find("kind = \"distance\"") != std::string::npos);
+  CHECK(text.find("kind = \"motor\"") == std::string::npos);
 }
 
 TEST_CASE("session: camera gestures: wheel zooms about the cursor, right drag pans, F fits") {
@@ -365,7 +485,7 @@ struct RecordingDraw : lua::OverlayDraw {
 };
 }  // namespace
 
-TEST_CASE("session: OnKey gets the keys the sandbox does not use; OnDraw draws through OverlayDraw") {
+TEST_CASE("session: OnKey gets the keys the sandbox does not use, OnDraw draws through OverlayDraw") {
   TempDir dir;
   const fs::path file = dir.path / "hooks.lua";
   write(file, R"(
@@ -461,7 +581,7 @@ end
   CHECK(s.world().shape(s.world().body(*s.world().findBody("ball")).shapes[0]).geometry.radius == 1.5);
 }
 
-TEST_CASE("session: the live error against Exact(t); a failing Exact is shown and switched off") {
+TEST_CASE("session: the live error against Exact(t), a failing Exact is shown and switched off") {
   TempDir dir;
   const fs::path file = dir.path / "exact.lua";
   // Uniform motion: every integrator is exact up to round-off.

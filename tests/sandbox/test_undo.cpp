@@ -23,7 +23,10 @@ TEST_CASE("undo: a property edit goes back and forth exactly") {
   const BodyProps before = captureProps(world, id);
   BodyProps after = before;
   after.mass = 7.5;
-  after.material.restitution = 0.9;
+  after.shapes[0].material.restitution = 0.9;
+  after.linear_damping = 0.25;
+  after.gravity_scale = -1.0;
+  after.bullet = true;
   after.velocity = Vec2(3, -1);
   after.position = Vec2(-4, 0.5);
   after.angle = 0.7;
@@ -62,7 +65,7 @@ TEST_CASE("undo: static/dynamic toggle keeps the velocity it had") {
   CHECK(world.body(id).velocity.y() == 2.0);
 }
 
-TEST_CASE("undo: delete brings the body back with its springs and dampers; edits before still apply") {
+TEST_CASE("undo: delete brings the body back with its springs and dampers, edits before still apply") {
   World world;
   const BodyId a = world.createBody(box({0, 0}));
   const BodyId b = world.createBody(box({3, 0}, 5.0));
@@ -125,7 +128,7 @@ TEST_CASE("undo: delete brings the body back with its springs and dampers; edits
   CHECK(world.bodyCount() == 1);
 }
 
-TEST_CASE("undo: add is undone by removing; redo adds it back as it was when undone") {
+TEST_CASE("undo: add is undone by removing, redo adds it back as it was when undone") {
   World world;
   UndoHistory h;
   const BodyId id = world.createBody(box({0, 0}));
@@ -155,7 +158,7 @@ TEST_CASE("undo: an edit whose body a script removed is refused, not applied to 
   CHECK(world.body(world.bodyIds()[0]).mass == 2.0);  // the other body is untouched
 }
 
-TEST_CASE("undo: a new edit clears the redo list; the history is bounded") {
+TEST_CASE("undo: a new edit clears the redo list, the history is bounded") {
   World world;
   const BodyId id = world.createBody(box({0, 0}));
   UndoHistory h;
@@ -176,4 +179,141 @@ TEST_CASE("undo: a new edit clears the redo list; the history is bounded") {
     h.recordModify(id, b, captureProps(world, id), "mass");
   }
   CHECK(h.size() <= UndoHistory::kMaxEdits);
+}
+
+namespace {
+JointId hinge(World& w, BodyId a, BodyId b, Vec2 at) {
+  JointDef d;
+  d.type = JointType::Revolute;
+  d.a = a;
+  d.b = b;
+  d.anchor_a = at;
+  d.enable_limit = true;
+  d.lower = -0.5;
+  d.upper = 0.25;
+  d.name = "hinge";
+  return w.createJoint(d);
+}
+}  // namespace
+
+TEST_CASE("undo: a deleted body comes back with its joints holding it as they did, wherever the other body went") {
+  World world;
+  const BodyId door = world.createBody(box({0, 0}));
+  const BodyId frame = world.createBody(box({1, 0}));
+  const JointId j = hinge(world, frame, door, {0.5, 0});
+  // The door turns 0.2 rad about the hinge and drifts a little off it.
+  world.setTransform(door, Vec2(0.5, 0) + Rot::fromAngle(0.2).apply(Vec2(-0.5, 0)) + Vec2(0.001, 0), 0.2);
+  const JointState before = world.jointState(j);
+  UndoHistory h;
+  h.destroy(world, door, "delete door");
+  CHECK(world.jointIds().empty());
+  // The frame moves and turns while the door is gone.
+  world.setTransform(frame, Vec2(3, 1), 1.0);
+  REQUIRE(h.undo(world));
+  REQUIRE(world.jointIds().size() == 1);
+  const JointId back = world.jointIds()[0];
+  const JointDef& d = world.joint(back);
+  CHECK(d.name == "hinge");
+  CHECK(d.enable_limit);
+  CHECK(d.lower == -0.5);
+  CHECK(d.upper == 0.25);
+  CHECK(d.a == frame);
+  CHECK(d.b == h.lastTouched());
+  // The joint holds each body at the same place of it as before: the frame's anchor moved and
+  // turned with the frame, the door's is where it was (1 mm off the hinge), and the angle counts
+  // from the same zero (0.2 − 1.0), so the limits are where they were on the door.
+  const JointState after = world.jointState(back);
+  CHECK(after.angle == doctest::Approx(0.2 - 1.0).epsilon(1e-12));
+  const Transform xf{Vec2(3, 1), Rot::fromAngle(1.0)};
+  CHECK((after.world_anchor_a - xf.apply(Vec2(-0.5, 0))).norm() < 1e-12);
+  CHECK((after.world_anchor_b - before.world_anchor_b).norm() < 1e-12);
+  REQUIRE(h.redo(world));
+  CHECK(world.jointIds().empty());
+}
+
+TEST_CASE("undo: joints made, deleted and tuned go back and forth, a gear comes back with the joint it couples") {
+  World world;
+  const BodyId big = world.createBody(box({0, 0}));
+  const BodyId small = world.createBody(box({2, 0}));
+  UndoHistory h;
+  const JointId pa = hinge(world, big, {}, {0, 0});
+  h.recordCreateJoint(world, pa, "add a");
+  const JointId pb = hinge(world, small, {}, {2, 0});
+  h.recordCreateJoint(world, pb, "add b");
+  JointDef g;
+  g.type = JointType::Gear;
+  g.joint_a = pa;
+  g.joint_b = pb;
+  g.ratio = 3.0;
+  h.recordCreateJoint(world, world.createJoint(g), "add gear");
+  CHECK(world.jointIds().size() == 3);
+
+  // Tuning: one undo step each way.
+  JointDef tuned = world.joint(pa);
+  tuned.enable_motor = true;
+  tuned.motor_speed = 2.0;
+  tuned.max_motor_torque = 10.0;
+  const JointDef old = world.joint(pa);
+  world.updateJoint(pa, tuned);
+  h.recordModifyJoint(pa, old, world.joint(pa), "motor");
+  REQUIRE(h.undo(world));
+  CHECK_FALSE(world.joint(pa).enable_motor);
+  REQUIRE(h.redo(world));
+  CHECK(world.joint(pa).motor_speed == 2.0);
+
+  // Deleting a joint takes the gear on it; undo brings both back, the gear on the new joint.
+  h.destroyJoint(world, pa, "delete a");
+  CHECK(world.jointIds().size() == 1);
+  REQUIRE(h.undo(world));
+  REQUIRE(world.jointIds().size() == 3);
+  int gears = 0;
+  for (const JointId id : world.jointIds()) {
+    const JointDef& d = world.joint(id);
+    if (d.type != JointType::Gear) continue;
+    ++gears;
+    CHECK(d.ratio == 3.0);
+    CHECK(world.isValid(d.joint_a));
+    CHECK(world.joint(d.joint_a).motor_speed == 2.0);  // the tuned joint, back as it was deleted
+  }
+  CHECK(gears == 1);
+  // Undo the tuning, then the three creations.
+  REQUIRE(h.undo(world));
+  for (int i = 0; i < 3; ++i) REQUIRE(h.undo(world));
+  CHECK(world.jointIds().empty());
+  for (int i = 0; i < 3; ++i) REQUIRE(h.redo(world));
+  CHECK(world.jointIds().size() == 3);
+}
+
+TEST_CASE("undo: shape properties and body options of a compound body go back and forth") {
+  World world;
+  BodyDef d = box({0, 0});
+  d.mass.reset();
+  const BodyId id = world.createBody(d);
+  ShapeDef more;
+  more.shape = makeCircle(0.4, {1, 0});
+  world.createShape(id, more);
+  UndoHistory h;
+  const BodyProps before = captureProps(world, id);
+  REQUIRE(before.shapes.size() == 2);
+  BodyProps after = before;
+  after.type = BodyType::Kinematic;
+  after.shapes[1].density = 5.0;
+  after.shapes[1].sensor = true;
+  after.shapes[1].filter = Filter{2, 4, -1};
+  after.shapes[0].material.friction = 0.1;
+  after.fixed_rotation = true;
+  after.enabled = false;
+  after.angular_damping = 3.0;
+  applyProps(world, id, after);
+  const BodyProps applied = captureProps(world, id);
+  CHECK(applied.shapes[1].density == 5.0);
+  CHECK(applied.mass > before.mass);  // the density edit is not undone by the mass it changed
+  CHECK(world.body(id).isKinematic());
+  CHECK_FALSE(world.body(id).enabled);
+  h.recordModify(id, before, applied, "edit");
+  REQUIRE(h.undo(world));
+  CHECK(captureProps(world, id) == before);
+  REQUIRE(h.redo(world));
+  CHECK(captureProps(world, id) == applied);
+  CHECK(world.shape(world.body(id).shapes[1]).filter == Filter{2, 4, -1});
 }

@@ -26,6 +26,7 @@ class AabbTree {
   uint32_t item(int32_t leaf) const { return nodes_[leaf].item; }
   void clear();
   int height() const { return root_ == kNull ? 0 : nodes_[root_].height; }
+  bool empty() const { return root_ == kNull; }
 
   // Calls visit(item) for every leaf whose fat box overlaps `box`; visit returns false to stop.
   template <typename Visit>

@@ -228,6 +228,10 @@ constexpr int kSmallIsland = 64;
 // (256) points, so at most 85 joints and kMaxDirectRows rows for their direct solve.
 constexpr uint32_t kJointPoints = 3;
 constexpr int kMoreIterations = 50;
+// Islands with joints: their equalities are solved exactly (joint_direct.cpp) before and after the
+// passes, and what the passes add (limits, motors, springs) converges slowly without being exact
+// at the end anyway (a ragdoll's island took 320 to 490 extra passes, or all 490): a few more only.
+constexpr int kMoreJointIterations = 3;
 
 SoftBody viewOf(const SolverBody& s) { return {s.vx, s.vy, s.w, 0.0, 0.0, 1.0, 0.0, s.im, s.ii}; }
 void storeView(SolverBody& s, const SoftBody& v) {
@@ -297,12 +301,15 @@ void convergeSmallIslands(WorldImpl& w, std::vector<SolverBody>& bodies, std::ve
     const uint32_t island = islandOf(order[start]);
     size_t end = start;
     uint32_t points = 0;
+    bool jointed = false;
     while (end < order.size() && islandOf(order[end]) == island) {
       points += order[end] < nc ? static_cast<uint32_t>(constraints[order[end]].count) : kJointPoints;
+      jointed |= order[end] >= nc;
       ++end;
     }
     if (points <= static_cast<uint32_t>(kSmallIsland)) {
-      for (int it = w.def.iterations; it < kMoreIterations * w.def.iterations; ++it) {
+      const int passes = (jointed ? kMoreJointIterations : kMoreIterations) * w.def.iterations;
+      for (int it = w.def.iterations; it < passes; ++it) {
         double change = 0.0, size = 0.0;
         for (size_t k = start; k < end; ++k) {  // the joints first, as in the passes above
           if (order[k] < nc) continue;

@@ -3,7 +3,8 @@
 //
 // After integration, a dynamic body that moved more than its inner radius in the step is
 // swept from where it started to where it ended (position and angle interpolated linearly)
-// against every static body whose box meets the swept box. The time of impact is found by
+// against every static shape whose box meets the swept box (a tree of the static shapes, kept
+// between steps, finds them). The time of impact is found by
 // conservative advancement (B. Mirtich 1996; E. Catto, "Continuous Collision", GDC 2013): at the
 // current time t the distance d between the shapes (a lower bound, manifold.cpp
 // separationLowerBound) cannot close faster than the sweep's bound on the speed of any point,
@@ -41,62 +42,79 @@ Transform placed(const Body& b, const Vec2& center, double angle) {
 
 }  // namespace
 
+namespace {
+
+void syncStaticTree(WorldImpl& w) {
+  if (w.static_tree_version == w.static_version) return;
+  w.static_tree_version = w.static_version;
+  w.static_tree.clear();
+  for (uint32_t s = 0; s < w.shapes.size(); ++s)
+    if (w.shape_alive[s] && w.bodyOf(s).isStatic()) w.static_tree.insert(computeAabb(w.shapes[s].geometry, w.bodyOf(s).xf), s);
+}
+
+}  // namespace
+
 void sweepFastBodies(WorldImpl& w) {
   const uint32_t n = static_cast<uint32_t>(w.bodies.size());
   const double target = 0.25 * w.def.contact_margin;  // stop this far from contact
-  // Obstacles: every static shape; for bullets also the shapes of moving bodies that are not
-  // bullets, where the integration left them (Box2D's rule: bullets against bullets are not swept).
-  w.statics.clear();
-  w.ccd_movers.clear();
+  // The bodies that could skip over something: most steps have none, and then nothing else is done.
+  w.fast_bodies.clear();
   bool bullets = false;
-  for (uint32_t i = 0; i < n; ++i) bullets |= w.isActive(i) && w.bodies[i].bullet;
-  for (uint32_t s = 0; s < w.shapes.size(); ++s) {
-    if (!w.shape_alive[s] || w.shapes[s].sensor) continue;
-    const Body& b = w.bodyOf(s);
-    if (!b.enabled) continue;
-    if (b.isStatic()) {
-      w.statics.push_back(s);
-    } else if (bullets && !b.bullet && (b.isKinematic() || b.awake)) {
-      w.ccd_movers.push_back(s);
-    }
-  }
-  if (w.statics.empty() && w.ccd_movers.empty()) return;
-
   const auto located = [&](uint32_t slot) { return slot < w.impact.located.size() && w.impact.located[slot]; };
   for (uint32_t i = 0; i < n; ++i) {
-    if (!w.isActive(i) || (located(i) && !w.bodies[i].bullet)) continue;
-    Body& b = w.bodies[i];
+    if (!w.isActive(i)) continue;
+    const Body& b = w.bodies[i];
+    bullets |= b.bullet;
+    if (located(i) && !b.bullet) continue;  // the search along its path already finds its first contact
     // A body's thinnest and widest shapes bound what it can skip and how far its points travel.
-    const double inradius = b.min_inradius, extent = b.max_extent;
-    if (extent == 0.0) continue;  // no solid shape
+    if (b.max_extent == 0.0) continue;  // no solid shape
+    const double travel = (b.center - w.start_center[i]).norm() + std::abs(b.angle - w.start_angle[i]) * b.max_extent;
+    if (travel > b.min_inradius) w.fast_bodies.push_back(i);  // else discrete detection sees it
+  }
+  if (w.fast_bodies.empty()) return;
+  // Obstacles: every static shape (a tree kept between steps); for bullets also the shapes of moving
+  // bodies that are not bullets, where the integration left them (Box2D's rule: bullets against
+  // bullets are not swept).
+  syncStaticTree(w);
+  w.ccd_movers.clear();
+  if (bullets)
+    for (uint32_t s = 0; s < w.shapes.size(); ++s) {
+      if (!w.shape_alive[s] || w.shapes[s].sensor) continue;
+      const Body& b = w.bodyOf(s);
+      if (b.enabled && !b.isStatic() && !b.bullet && (b.isKinematic() || b.awake)) w.ccd_movers.push_back(s);
+    }
+  if (w.static_tree.empty() && w.ccd_movers.empty()) return;
+
+  for (uint32_t i : w.fast_bodies) {
+    Body& b = w.bodies[i];
+    const double extent = b.max_extent;
     const Vec2 c0 = w.start_center[i], c1 = b.center;
     const double a0 = w.start_angle[i], a1 = b.angle;
     const double travel = (c1 - c0).norm() + std::abs(a1 - a0) * extent;
-    if (travel <= inradius) continue;  // cannot skip over anything: discrete detection sees it
     ++w.stats.ccd_sweeps;
 
     const Transform start = placed(b, c0, a0);
+    // The earliest time of impact over all obstacles is their minimum, whatever order they come in
+    // (an obstacle's own time does not depend on the others').
     double first = 1.0;
-    const auto sweep = [&](const BodyShape& mover, const Aabb& swept, const std::vector<uint32_t>& obstacles) {
-      for (uint32_t s : obstacles) {
-        const BodyShape& wall = w.shapes[s];
-        if (wall.body.index == i || !shouldCollide(mover.filter, wall.filter)) continue;
-        const Body& wall_body = w.bodies[wall.body.index];
-        if (located(wall.body.index)) continue;  // two located bodies: their impacts are located
-        if (!swept.overlaps(computeAabb(wall.geometry, wall_body.xf))) continue;
-        if (wall_body.isDynamic() && w.jointBlocksCollision(i, wall.body.index)) continue;
-        const double d0 = separationLowerBound(mover.geometry, start, wall.geometry, wall_body.xf);
-        if (d0 <= target) continue;  // already in contact at the start: the contact solver has it
-        double t = 0.0;
-        for (int iteration = 0; iteration < 50 && t < first; ++iteration) {
-          const double d = separationLowerBound(mover.geometry, placed(b, c0 + t * (c1 - c0), a0 + t * (a1 - a0)),
-                                                wall.geometry, wall_body.xf);
-          if (d <= target) {
-            first = t;
-            break;
-          }
-          t += (d - 0.5 * target) / travel;
+    const auto sweepOne = [&](const BodyShape& mover, const Aabb& swept, uint32_t s) {
+      const BodyShape& wall = w.shapes[s];
+      if (wall.body.index == i || wall.sensor || !shouldCollide(mover.filter, wall.filter)) return;
+      if (located(wall.body.index)) return;  // two located bodies: their impacts are located
+      const Body& wall_body = w.bodies[wall.body.index];
+      if (!wall_body.enabled || !swept.overlaps(computeAabb(wall.geometry, wall_body.xf))) return;
+      if (wall_body.isDynamic() && w.jointBlocksCollision(i, wall.body.index)) return;
+      const double d0 = separationLowerBound(mover.geometry, start, wall.geometry, wall_body.xf);
+      if (d0 <= target) return;  // already in contact at the start: the contact solver has it
+      double t = 0.0;
+      for (int iteration = 0; iteration < 50 && t < first; ++iteration) {
+        const double d = separationLowerBound(mover.geometry, placed(b, c0 + t * (c1 - c0), a0 + t * (a1 - a0)),
+                                              wall.geometry, wall_body.xf);
+        if (d <= target) {
+          first = t;
+          break;
         }
+        t += (d - 0.5 * target) / travel;
       }
     };
     for (ShapeId id : b.shapes) {
@@ -107,8 +125,13 @@ void sweepFastBodies(WorldImpl& w) {
       const Aabb end = computeAabb(mover.geometry, b.xf);
       swept.lower = swept.lower.cwiseMin(end.lower);
       swept.upper = swept.upper.cwiseMax(end.upper);
-      if (!located(i)) sweep(mover, swept, w.statics);
-      if (b.bullet) sweep(mover, swept, w.ccd_movers);
+      if (!located(i))
+        w.static_tree.query(swept, [&](uint32_t s) {
+          if (w.shape_alive[s] && w.bodyOf(s).isStatic()) sweepOne(mover, swept, s);
+          return true;
+        });
+      if (b.bullet)
+        for (uint32_t s : w.ccd_movers) sweepOne(mover, swept, s);
     }
     if (first < 1.0) {
       ++w.stats.ccd_hits;

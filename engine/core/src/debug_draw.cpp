@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "world_impl.h"
 
@@ -65,6 +66,104 @@ void drawForceArrow(DebugDraw& dd, const Vec2& from, const Vec2& force, double m
   const double length = std::clamp(magnitude / weight, 0.2, 3.0);
   dd.drawArrow(from, from + force / magnitude * length, {1.0f, 0.4f, 0.3f, 1.0f});
 }
+
+namespace {
+
+// A joint's frames at the drawn poses: where its anchors are, and where its bodies' centres are.
+struct JointPose {
+  Transform xa, xb;
+  Vec2 anchor_a, anchor_b;
+  std::optional<Vec2> center_a, center_b;  // nothing for the world
+  double angle_a = 0.0, angle_b = 0.0;
+};
+
+// Joints as a few lines each (no allocation): the bodies' centres joined to their anchors, the
+// anchors as points, and what each type constrains. Limits are drawn where the line from the
+// anchor to b's centre would point (revolute) or where b's anchor would be (prismatic, wheel) at
+// the bounds.
+template <typename TransformOf>
+void drawJoints(const WorldImpl& w, DebugDraw& dd, TransformOf transformOf) {
+  const Color line{0.55f, 0.95f, 0.75f, 0.9f}, anchor{0.7f, 1.0f, 0.85f, 1.0f}, limit{1.0f, 0.6f, 0.3f, 1.0f};
+  const Color gap{1.0f, 0.3f, 0.3f, 1.0f};
+  const auto size = [&](uint32_t slot) {  // a length for marks on a body: about its size, 0.1 to 1 m
+    return slot == kWorldSlot ? 0.5 : std::clamp(w.bodies[slot].max_extent, 0.1, 1.0);
+  };
+  for (const Joint& j : w.joints) {
+    if (!j.alive) continue;
+    JointPose p;
+    const auto place = [&](uint32_t slot, Transform& xf, std::optional<Vec2>& center, double& angle) {
+      if (slot == kWorldSlot) return;
+      xf = transformOf(slot);
+      center = xf.apply(w.bodies[slot].local_center);
+      angle = std::atan2(xf.q.s, xf.q.c);
+    };
+    place(j.a, p.xa, p.center_a, p.angle_a);
+    place(j.b, p.xb, p.center_b, p.angle_b);
+    if (j.def.type == JointType::Gear) {  // the two geared bodies
+      if (p.center_a && p.center_b) dd.drawSegment(*p.center_a, *p.center_b, line);
+      continue;
+    }
+    p.anchor_a = p.xa.apply(j.local_a);
+    p.anchor_b = p.xb.apply(j.local_b);
+    if (p.center_a) dd.drawSegment(*p.center_a, p.anchor_a, line);
+    if (p.center_b) dd.drawSegment(*p.center_b, p.anchor_b, line);
+    switch (j.def.type) {
+      case JointType::Distance:
+        if (j.def.enable_spring && j.def.spring_hertz > 0.0)
+          dd.drawSpring(p.anchor_a, p.anchor_b, 0.15 * std::min(size(j.a), size(j.b)), line);
+        else
+          dd.drawSegment(p.anchor_a, p.anchor_b, line);
+        break;
+      case JointType::Motor:  // b's anchor and its target
+        dd.drawSegment(p.anchor_a, p.anchor_b, line);
+        break;
+      case JointType::Pulley:
+        dd.drawSegment(p.anchor_a, j.def.ground_a, line);
+        dd.drawSegment(j.def.ground_a, j.def.ground_b, line);
+        dd.drawSegment(j.def.ground_b, p.anchor_b, line);
+        dd.drawPoint(j.def.ground_a, 6.0f, anchor);
+        dd.drawPoint(j.def.ground_b, 6.0f, anchor);
+        break;
+      case JointType::Prismatic:
+      case JointType::Wheel: {
+        const Vec2 u = p.xa.q.apply(j.local_axis), n = perp(u);
+        const double reach = 2.0 * size(j.b);
+        dd.drawSegment(p.anchor_a - reach * u, p.anchor_a + reach * u, line);
+        if (j.def.enable_limit) {
+          const double tick = 0.3 * size(j.b);
+          for (const double bound : {j.def.lower, j.def.upper}) {
+            const Vec2 at = p.anchor_a + bound * u;
+            dd.drawSegment(at - tick * n, at + tick * n, limit);
+          }
+        }
+        break;
+      }
+      case JointType::Revolute:
+        if (j.def.enable_limit) {
+          const Vec2 arm = p.center_b ? Vec2(*p.center_b - p.anchor_b) : Vec2::Zero();
+          const double current = p.angle_b - p.angle_a - j.reference_angle;
+          const double direction = arm.norm() > 1e-9 ? std::atan2(arm.y(), arm.x()) : p.angle_b;
+          const double length = std::clamp(arm.norm(), 0.5 * size(j.b), 2.0 * size(j.b));
+          for (const double bound : {j.def.lower, j.def.upper}) {
+            const double t = direction + bound - current;
+            dd.drawSegment(p.anchor_b, p.anchor_b + length * Vec2(std::cos(t), std::sin(t)), limit);
+          }
+        }
+        break;
+      default:
+        break;
+    }
+    // Anchors that should coincide and do not (a joint pulled apart) are joined in red.
+    const bool one_anchor = j.def.type != JointType::Distance && j.def.type != JointType::Pulley &&
+                            j.def.type != JointType::Motor && j.def.type != JointType::Prismatic &&
+                            j.def.type != JointType::Wheel;
+    if (one_anchor && (p.anchor_b - p.anchor_a).norm() > 1e-3) dd.drawSegment(p.anchor_a, p.anchor_b, gap);
+    dd.drawPoint(p.anchor_a, 6.0f, anchor);
+    dd.drawPoint(p.anchor_b, 6.0f, anchor);
+  }
+}
+
+}  // namespace
 
 void World::draw(DebugDraw& dd, const DrawOptions& opt) const {
   const WorldImpl& w = *impl_;
@@ -140,6 +239,8 @@ void World::draw(DebugDraw& dd, const DrawOptions& opt) const {
     if (opt.velocities && !b.isStatic())
       dd.drawArrow(center, center + b.velocity * 0.25, {0.3f, 1.0f, 0.5f, 1.0f});  // 0.25 s of travel
   }
+
+  if (opt.joints) drawJoints(w, dd, transformOf);
 
   for (const ForceEntry& f : w.forces) {
     if (!f.alive) continue;

@@ -31,8 +31,33 @@ Vec2 solvePointMatrix(const SoftBody& a, const SoftBody& b, const Vec2& ra, cons
   return Vec2(det * (k22 * rhs.x() - k12 * rhs.y()), det * (k11 * rhs.y() - k12 * rhs.x()));
 }
 
+void solvePointConstraint(Joint& j, SoftBody& a, SoftBody& b, const JointStep& step, bool use_bias) {
+  const Vec2 ra = turned(a, j.ra), rb = turned(b, j.rb);
+  const Softness& soft = step.soft;
+  const double mass_scale = use_bias ? soft.mass_scale : 1.0, impulse_scale = use_bias ? soft.impulse_scale : 0.0;
+  Vec2 c = anchorSeparation(j, a, b, ra, rb);
+  if (step.position)  // each row's error clamped on its own, as the rows of joint_rows.cpp are
+    c = Vec2(std::clamp(c.x(), -kMaxLinearCorrection, kMaxLinearCorrection),
+             std::clamp(c.y(), -kMaxLinearCorrection, kMaxLinearCorrection));
+  const Vec2 cdot = pointVelocity(b, rb) - pointVelocity(a, ra);
+  const Vec2 x = solvePointMatrix(a, b, ra, rb, use_bias ? Vec2(cdot + soft.bias_rate * c) : cdot);
+  JointImpulses& p = j.impulses;
+  const Vec2 impulse = -mass_scale * x - impulse_scale * Vec2(p.linear_x, p.linear_y);
+  p.linear_x += impulse.x();
+  p.linear_y += impulse.y();
+  applyLinear(a, b, ra, rb, impulse);
+}
+
 void prepareJoint(Joint& j, const JointBodyPose& a, const JointBodyPose& b, const JointBodyPose* c,
                   const JointBodyPose* d, const JointStep& step) {
+  j.type = j.def.type;
+  j.enable_limit = j.def.enable_limit;
+  j.enable_motor = j.def.enable_motor;
+  j.enable_spring = j.def.enable_spring && j.def.spring_hertz > 0.0;
+  j.lower = j.def.lower;
+  j.upper = j.def.upper;
+  j.motor_speed = j.def.motor_speed;
+  j.max_motor_torque = j.def.max_motor_torque;
   j.ma = a.inv_mass;
   j.ia = a.inv_inertia;
   j.mb = b.inv_mass;
@@ -87,7 +112,7 @@ void warmStartJoint(Joint& j, const JointBodies& bodies) {
   SoftBody& b = *bodies.b;
   const JointImpulses& p = j.impulses;
   const Vec2 ra = turned(a, j.ra), rb = turned(b, j.rb);
-  switch (j.def.type) {
+  switch (j.type) {
     case JointType::Revolute:
       applyLinear(a, b, ra, rb, Vec2(p.linear_x, p.linear_y));
       applyAngular(a, b, p.spring + p.motor + p.lower - p.upper);
@@ -132,7 +157,7 @@ void warmStartJoint(Joint& j, const JointBodies& bodies) {
 void solveJoint(Joint& j, const JointBodies& bodies, const JointStep& step, bool use_bias) {
   SoftBody& a = *bodies.a;
   SoftBody& b = *bodies.b;
-  switch (j.def.type) {
+  switch (j.type) {
     case JointType::Revolute: solveRevolute(j, a, b, step, use_bias); break;
     case JointType::Distance: solveDistance(j, a, b, step, use_bias); break;
     case JointType::Prismatic: solvePrismatic(j, a, b, step, use_bias); break;

@@ -11,7 +11,6 @@
 //            reached may close by C in this step (speculative: bias C/h), a violated one is pushed
 //            back by the soft bias.
 #include "joint.h"
-#include "joint_rows.h"
 
 namespace rigidlab {
 
@@ -45,25 +44,24 @@ void solveAngularLimit(Joint& j, SoftBody& a, SoftBody& b, const JointStep& step
 void solveRevolute(Joint& j, SoftBody& a, SoftBody& b, const JointStep& step, bool use_bias) {
   JointImpulses& p = j.impulses;
   const bool turns = j.ia + j.ib > 0.0;
-  if (j.def.enable_spring && turns && !step.position && j.def.spring_hertz > 0.0) {
+  if (j.enable_spring && turns && !step.position) {
     const double c = relativeAngle(j, a, b);
     const double impulse = -j.spring.mass_scale * j.axial_mass * (b.w - a.w + j.spring.bias_rate * c) -
                            j.spring.impulse_scale * p.spring;
     p.spring += impulse;
     applyAngular(a, b, impulse);
   }
-  if (j.def.enable_motor && turns && !step.position) {
-    const double old = p.motor, max = step.h * j.def.max_motor_torque;
-    p.motor = std::clamp(old - j.axial_mass * (b.w - a.w - j.def.motor_speed), -max, max);
+  if (j.enable_motor && turns && !step.position) {
+    const double old = p.motor, max = step.h * j.max_motor_torque;
+    p.motor = std::clamp(old - j.axial_mass * (b.w - a.w - j.motor_speed), -max, max);
     applyAngular(a, b, p.motor - old);
   }
-  if (j.def.enable_limit && turns) {
+  if (j.enable_limit && turns) {
     const double angle = relativeAngle(j, a, b);
-    solveAngularLimit(j, a, b, step, use_bias, angle - j.def.lower, 1.0, p.lower);
-    solveAngularLimit(j, a, b, step, use_bias, j.def.upper - angle, -1.0, p.upper);
+    solveAngularLimit(j, a, b, step, use_bias, angle - j.lower, 1.0, p.lower);
+    solveAngularLimit(j, a, b, step, use_bias, j.upper - angle, -1.0, p.upper);
   }
-  // The point constraint (joint_rows.cpp).
-  solveEqualityRows(j, {&a, &b, &a, &b}, step, use_bias);
+  solvePointConstraint(j, a, b, step, use_bias);
 }
 
 }  // namespace rigidlab

@@ -111,7 +111,9 @@ BodyId World::createBody(const BodyDef& def) {
   b.fixed_rotation = def.fixed_rotation;
   b.bullet = def.bullet;
   b.enabled = def.enabled;
-  b.awake = def.enabled;
+  // Only a dynamic body at rest may start asleep (a moving one would freeze in the air).
+  const bool at_rest = def.velocity == Vec2::Zero() && def.angular_velocity == 0.0;
+  b.awake = def.enabled && (def.awake || def.type != BodyType::Dynamic || !w.def.sleeping || !at_rest);
   w.updateMass(b, "density", 0.0);  // no shapes yet
   place(b, position, angle);
 
@@ -130,6 +132,8 @@ BodyId World::createBody(const BodyDef& def) {
   }
   const BodyId id = w.bodies[index].id;
   w.body_joints.resize(w.bodies.size());
+  w.created_asleep_before.resize(w.bodies.size());
+  w.created_asleep_before[index] = w.bodies[index].awake ? 0 : w.step_count + 1;
   if (def.shape) {
     try {
       w.attachShape(index, shape_def, def.mass ? "mass" : "density", def.mass.value_or(def.density));
@@ -215,6 +219,7 @@ void World::setTransform(BodyId id, const Vec2& position, double angle) {
   requireFinite("angle", angle);
   place(b, position, angle);
   ++impl_->layout_version;
+  ++impl_->static_version;
 }
 
 void World::setVelocity(BodyId id, const Vec2& velocity) {
@@ -252,6 +257,7 @@ void World::setType(BodyId id, BodyType type) {
     throw InputError("type", "a body with a segment or chain shape cannot be dynamic: segments have no area (use a capsule or a thin box)");
   w.wakeIsland(id.index);
   b.type = type;
+  ++w.static_version;
   if (type == BodyType::Dynamic) b.frozen = false;
   if (b.isStatic()) {
     b.velocity = Vec2::Zero();
@@ -339,6 +345,7 @@ void World::setEnabled(BodyId id, bool on) {
   if (b.enabled == on) return;
   w.wakeIsland(id.index);
   ++w.layout_version;
+  ++w.static_version;
   b.enabled = on;
   b.awake = on;  // a disabled body is never awake (WorldImpl::isActive)
   b.sleep_time = 0.0;

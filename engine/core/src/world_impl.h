@@ -75,6 +75,10 @@ struct WorldImpl {
   SimClock clock;
   double dt = 0.0;  // of the step in progress [s]
   long step_count = 0;
+  // Per body slot: step_count + 1 if the body was created asleep (BodyDef::awake = false) since the
+  // last step, else older. Shapes added to such a body before it is stepped do not wake it: the
+  // caller said it starts at rest, as Box2D does (createShape).
+  std::vector<long> created_asleep_before;
   uint32_t next_uid = 1;
   bool locked = false;  // true while step() runs
   StepStats stats;
@@ -162,7 +166,11 @@ struct WorldImpl {
   std::vector<int32_t> tree_leaf;  // per shape slot, AabbTree::kNull when not in the tree
   uint64_t layout_version = 1, tree_version = 0;
   void syncTree();
-  std::vector<uint32_t> statics;     // shape slots of static bodies (continuous.cpp)
+  // Static shapes for continuous collision (continuous.cpp): a tree rebuilt only after an edit that
+  // can add or move a static shape (static_version: shape added, body moved, retyped, enabled).
+  AabbTree static_tree;
+  uint64_t static_version = 1, static_tree_version = 0;
+  std::vector<uint32_t> fast_bodies;  // body slots that moved more than their inner radius this step
   std::vector<uint32_t> ccd_movers;  // shape slots of moving bodies that bullets are swept against
   std::vector<char> ccd_hit;      // per slot: stopped by continuous collision detection this step
   std::vector<Vec2> world_vertices, world_normals;  // every polygon placed in the world this step

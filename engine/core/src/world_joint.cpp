@@ -14,6 +14,11 @@ Transform transformOf(const WorldImpl& w, uint32_t slot) {
 }
 double angleOf(const WorldImpl& w, uint32_t slot) { return slot == kWorldSlot ? 0.0 : w.bodies[slot].angle; }
 
+// A force or torque bound: ≥ 0, and infinity means unlimited (a motor that always reaches its speed).
+void requireBound(const char* field, double x) {
+  if (!(x >= 0.0)) throw InputError(field, std::string(field) + " must be >= 0 (or inf: unlimited), got " + formatNumber(x));
+}
+
 // The tunables every type shares, and each type's own: refused with the field's name and value.
 void validateTunables(const JointDef& d) {
   if (!(d.break_force > 0.0) || std::isnan(d.break_force))
@@ -25,8 +30,8 @@ void validateTunables(const JointDef& d) {
   if (d.enable_limit && d.lower > d.upper && d.type != JointType::Distance)
     throw InputError("lower", "lower (" + formatNumber(d.lower) + ") must not exceed upper (" + formatNumber(d.upper) + ")");
   requireFinite("motor_speed", d.motor_speed);
-  requireNonNegative("max_motor_torque", d.max_motor_torque);
-  requireNonNegative("max_motor_force", d.max_motor_force);
+  requireBound("max_motor_torque", d.max_motor_torque);
+  requireBound("max_motor_force", d.max_motor_force);
   requireNonNegative("spring_hertz", d.spring_hertz);
   requireNonNegative("spring_damping", d.spring_damping);
   requireNonNegative("linear_hertz", d.linear_hertz);
@@ -39,8 +44,8 @@ void validateTunables(const JointDef& d) {
   requireFinite("angular_offset", d.angular_offset);
   requireFinite("linear_velocity", d.linear_velocity);
   requireFinite("angular_velocity", d.angular_velocity);
-  requireNonNegative("max_force", d.max_force);
-  requireNonNegative("max_torque", d.max_torque);
+  requireBound("max_force", d.max_force);
+  requireBound("max_torque", d.max_torque);
   if (d.type == JointType::Distance) {
     requireNonNegative("min_length", d.min_length);
     if (!(d.max_length >= 0.0)) throw InputError("max_length", "max_length must be >= 0, got " + formatNumber(d.max_length));
@@ -155,6 +160,7 @@ JointId World::createJoint(const JointDef& in) {
     j.local_a = xa.applyInverse(d.anchor_a);
     j.local_b = xb.applyInverse(d.anchor_b);
     j.reference_angle = angleOf(w, j.b) - angleOf(w, j.a);
+    if (d.reference_angle && d.type != JointType::Motor) j.reference_angle = requireFinite("reference_angle", *d.reference_angle);
     if (d.type == JointType::Prismatic || d.type == JointType::Wheel) {
       requireFinite("axis", d.axis);
       if (!(d.axis.norm() > 0.0)) throw InputError("axis", "axis must not be zero, got " + formatVec(d.axis));
@@ -253,12 +259,14 @@ void World::updateJoint(JointId id, const JointDef& def) {
   Joint& j = w.get(id);
   JointDef checked = j.def;
   copyTunables(checked, def);
-  validateTunables(checked);
-  if (j.def.type == JointType::Motor) {
+  if (j.def.type == JointType::Motor) {  // the target pose is the motor's to change
     checked.linear_offset = def.linear_offset;
     checked.angular_offset = def.angular_offset;
-    j.local_a = def.linear_offset;
-    j.reference_angle = def.angular_offset;
+  }
+  validateTunables(checked);
+  if (j.def.type == JointType::Motor) {
+    j.local_a = checked.linear_offset;
+    j.reference_angle = checked.angular_offset;
   }
   j.def = checked;
   for (uint32_t slot : {j.a, j.b, j.c, j.d})
@@ -282,6 +290,7 @@ JointState World::jointState(JointId id) const {
   const Vec2 d = s.world_anchor_b - s.world_anchor_a;
   if (j.def.type == JointType::Prismatic || j.def.type == JointType::Wheel) {
     const Vec2 axis = xa.q.apply(j.local_axis);
+    s.axis = axis;
     s.translation = axis.dot(d);
     // d/dt (a · d) = a · (v_pB − v_pA) + (ω_A × a) · d
     const double along = axis.dot(velocityAt(j.b, s.world_anchor_b) - velocityAt(j.a, s.world_anchor_a)) + cross(wa, axis).dot(d);

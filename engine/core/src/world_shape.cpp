@@ -147,6 +147,7 @@ uint32_t WorldImpl::attachShape(uint32_t body, const ShapeDef& def, const char* 
   b.shapes.push_back(shapes[index].id);
   countShape(shapes[index], +1);
   ++layout_version;
+  ++static_version;
   try {
     updateMass(b, field, value);
   } catch (...) {
@@ -171,8 +172,8 @@ void WorldImpl::releaseShape(uint32_t index) {
 ShapeId World::createShape(BodyId body, const ShapeDef& def) {
   WorldImpl& w = *impl_;
   w.requireUnlocked("createShape");
-  w.get(body);
-  w.wakeIsland(body.index);
+  const Body& b = w.get(body);
+  if (b.awake || w.created_asleep_before[body.index] != w.step_count + 1) w.wakeIsland(body.index);
   return w.shapes[w.attachShape(body.index, def, "density", def.density)].id;
 }
 

@@ -10,22 +10,51 @@ namespace rigidlab::lua::api {
 
 // body.<field>: readable ones (methods included) and the writable subset.
 inline const std::vector<std::string_view> kBodyReadable = {
-    "position", "angle", "velocity", "angular_velocity", "mass", "static", "name", "restitution",
-    "friction", "static_friction", "awake", "id", "center", "inertia", "density", "shape", "radius", "vertices",
-    "removed", "apply_impulse", "apply_force"};
+    "position", "angle", "velocity", "angular_velocity", "mass", "static", "type", "name", "restitution",
+    "friction", "static_friction", "awake", "id", "center", "local_center", "inertia", "density", "shape", "radius",
+    "vertices", "shapes", "removed", "linear_damping", "angular_damping", "gravity_scale", "fixed_rotation", "bullet",
+    "enabled", "user_data", "sensor", "category", "mask", "group", "apply_impulse", "apply_force", "add_shape",
+    "set_target", "joints"};
 inline const std::vector<std::string_view> kBodyWritable = {
-    "position", "angle", "velocity", "angular_velocity", "mass", "static", "name", "restitution",
-    "friction", "static_friction", "awake"};
+    "position", "angle", "velocity", "angular_velocity", "mass", "static", "type", "name", "restitution",
+    "friction", "static_friction", "awake", "linear_damping", "angular_damping", "gravity_scale", "fixed_rotation",
+    "bullet", "enabled", "user_data", "sensor", "category", "mask", "group"};
+
+// shape.<field> (body:add_shape returns a shape; body.shapes lists them).
+inline const std::vector<std::string_view> kShapeReadable = {
+    "kind", "body", "radius", "center", "vertices", "a", "b", "density", "mass", "area", "restitution", "friction",
+    "static_friction", "sensor", "category", "mask", "group", "removed", "remove"};
+inline const std::vector<std::string_view> kShapeWritable = {"density", "restitution", "friction", "static_friction",
+                                                            "sensor", "category", "mask", "group"};
 
 inline const std::vector<std::string_view> kWorldFields = {"gravity", "integrator", "dt", "solver", "iterations",
                                                            "substeps", "sleeping", "time", "step_count", "title"};
 inline const std::vector<std::string_view> kWorldMethods = {
-    "add_box", "add_circle", "add_polygon", "add_spring", "add_damper", "add_force", "bodies", "find", "remove",
-    "step", "kinetic_energy", "potential_energy"};
+    "add_body", "add_box", "add_circle", "add_polygon", "add_capsule", "add_segment", "add_chain", "add_spring",
+    "add_damper", "add_force", "add_revolute", "add_prismatic", "add_distance", "add_weld", "add_wheel",
+    "add_motor_joint", "add_friction_joint", "add_pulley", "add_gear", "bodies", "find", "joints", "find_joint",
+    "remove", "step", "kinetic_energy", "potential_energy"};
 
-inline const std::vector<std::string_view> kBodyOptions = {"position", "angle", "velocity", "angular_velocity",
-                                                           "density", "mass", "restitution", "friction",
-                                                           "static_friction", "static", "name"};
+// What every function that makes a body takes (add_body takes only these).
+inline const std::vector<std::string_view> kBodyOptions = {
+    "position", "angle", "velocity", "angular_velocity", "type", "static", "name", "linear_damping",
+    "angular_damping", "gravity_scale", "fixed_rotation", "bullet", "enabled", "user_data"};
+// The options of a shape: body:add_shape{} and, for their one shape, add_box, add_circle, ...
+inline const std::vector<std::string_view> kShapeOptions = {"density", "restitution", "friction", "static_friction",
+                                                            "sensor", "category", "mask", "group"};
+// The one-shape world:add_* functions take kBodyOptions, kShapeOptions, these and their geometry.
+inline const std::vector<std::string_view> kShapedBodyOptions = {"mass"};
+inline const std::vector<std::string_view> kBoxOptions = {"width", "height"};
+inline const std::vector<std::string_view> kCircleOptions = {"radius"};
+inline const std::vector<std::string_view> kPolygonOptions = {"vertices", "concave"};
+inline const std::vector<std::string_view> kCapsuleOptions = {"a", "b", "radius"};
+inline const std::vector<std::string_view> kSegmentOptions = {"a", "b"};
+inline const std::vector<std::string_view> kChainOptions = {"points", "loop"};
+// body:add_shape{} takes kShapeOptions and these.
+inline const std::vector<std::string_view> kAddShapeOptions = {"shape",    "radius", "width", "height", "vertices",
+                                                               "a",        "b",      "offset", "angle"};
+inline const std::vector<std::string_view> kTargetOptions = {"position", "angle", "time"};
+
 inline const std::vector<std::string_view> kSpringOptions = {"a", "b", "anchor", "local_a", "local_b", "stiffness",
                                                              "rest_length", "damping"};
 inline const std::vector<std::string_view> kDamperOptions = {"body", "coefficient", "angular_coefficient"};
@@ -34,5 +63,58 @@ inline const std::vector<std::string_view> kSceneOptions = {"title", "gravity", 
                                                             "iterations", "substeps", "sleeping", "duration",
                                                             "camera", "memory_limit", "expect_incidents",
                                                             "impacts"};
+
+// Joints: every add_* joint function takes kJointOptions and its own.
+inline const std::vector<std::string_view> kJointOptions = {"collide_connected", "break_force", "break_torque", "name"};
+inline const std::vector<std::string_view> kRevoluteOptions = {
+    "a", "b", "anchor", "enable_limit", "lower_angle", "upper_angle", "enable_motor", "motor_speed", "max_motor_torque",
+    "enable_spring", "spring_hertz", "spring_damping"};
+inline const std::vector<std::string_view> kPrismaticOptions = {
+    "a", "b", "anchor", "axis", "enable_limit", "lower", "upper", "enable_motor", "motor_speed", "max_motor_force",
+    "enable_spring", "spring_hertz", "spring_damping"};
+inline const std::vector<std::string_view> kDistanceOptions = {
+    "a", "b", "anchor_a", "anchor_b", "length", "enable_limit", "min_length", "max_length", "enable_spring",
+    "spring_hertz", "spring_damping", "max_spring_force"};
+inline const std::vector<std::string_view> kWeldOptions = {"a", "b", "anchor", "linear_hertz", "linear_damping",
+                                                           "angular_hertz", "angular_damping"};
+inline const std::vector<std::string_view> kWheelOptions = {
+    "a", "b", "anchor", "axis", "enable_limit", "lower", "upper", "enable_motor", "motor_speed", "max_motor_torque",
+    "enable_spring", "spring_hertz", "spring_damping"};
+inline const std::vector<std::string_view> kMotorJointOptions = {
+    "a", "b", "anchor", "linear_offset", "angular_offset", "linear_velocity", "angular_velocity", "max_force",
+    "max_torque", "motor_hertz", "motor_damping"};
+inline const std::vector<std::string_view> kFrictionJointOptions = {"a", "b", "anchor", "max_force", "max_torque"};
+inline const std::vector<std::string_view> kPulleyOptions = {"a", "b", "anchor_a", "anchor_b", "ground_a", "ground_b",
+                                                             "ratio"};
+inline const std::vector<std::string_view> kGearOptions = {"joint_a", "joint_b", "ratio"};
+
+// joint.<field>: what every joint has (methods included); the writable ones of kJointOptions; and
+// each kind's own fields, writable unless listed in kJointReadOnly.
+inline const std::vector<std::string_view> kJointReadable = {
+    "kind", "a", "b", "name", "collide_connected", "break_force", "break_torque", "angle", "speed", "translation",
+    "reaction_force", "reaction_torque", "anchor_a", "anchor_b", "broken", "removed", "remove"};
+inline const std::vector<std::string_view> kJointWritable = {"name", "collide_connected", "break_force",
+                                                             "break_torque"};
+inline const std::vector<std::string_view> kJointReadOnly = {"length", "ground_a", "ground_b", "ratio", "joint_a",
+                                                             "joint_b", "set_limits"};
+
+// The option lists of the joint functions, in JointType order (revolute ... gear).
+inline const std::vector<const std::vector<std::string_view>*> kJointKindOptions = {
+    &kRevoluteOptions, &kPrismaticOptions, &kDistanceOptions,      &kWeldOptions,  &kWheelOptions,
+    &kMotorJointOptions, &kFrictionJointOptions, &kPulleyOptions, &kGearOptions};
+
+// The fields a joint handle has besides kJointReadable: its kind's options that are not fixed at
+// creation (the bodies, anchors and axis), and set_limits for the kinds with limits.
+inline std::vector<std::string_view> jointOwnFields(const std::vector<std::string_view>& options) {
+  std::vector<std::string_view> own;
+  bool limits = false;
+  for (std::string_view name : options) {
+    limits = limits || name == "enable_limit";
+    if (name != "a" && name != "b" && name != "anchor" && name != "anchor_a" && name != "anchor_b" && name != "axis")
+      own.push_back(name);
+  }
+  if (limits) own.push_back("set_limits");
+  return own;
+}
 
 }  // namespace rigidlab::lua::api

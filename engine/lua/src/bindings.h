@@ -4,8 +4,12 @@
 
 #include <memory>
 #include <new>
+#include <set>
 #include <string>
+#include <string_view>
 #include <type_traits>
+#include <utility>
+#include <vector>
 
 #include "rigidlab/lua/scene.h"
 #include "script_host.h"
@@ -23,6 +27,18 @@ struct Scene::Impl {
   std::string name;  // what messages show as the file name
   sol::object on_step, check, on_key, on_draw, exact;  // the hook functions, or nil
   sol::table handles;       // body uid → its Lua handle, so the same body is always the same object
+  sol::table user_data;     // body uid → body.user_data (any Lua value; the engine never reads it)
+  // Shape and joint key (handleKey) → handle, weak-valued: the same shape or joint is the same
+  // object while a script holds it (usable as a table key), and a forgotten one costs nothing.
+  sol::table shape_handles, joint_handles;
+  // Joints that broke in a step (handleKey), so a handle still says `broken` after the core removed
+  // the joint (noteJointBreaks).
+  std::set<uint64_t> broken_joints;
+  // Host memory charged for joints. The core removes joints on its own (with their bodies, when
+  // they break), so the charges of joints that no longer exist are given back in batches
+  // (chargeJoint).
+  std::vector<std::pair<JointId, size_t>> joint_charges;
+  size_t joint_charges_checked = 0;  // joint_charges.size() after the last pass
   sol::object world_handle; // the `world` passed to hooks
   sol::object draw_handle;  // the `draw` passed to OnDraw
   LuaDraw* draw = nullptr;  // draw_handle's object
@@ -41,6 +57,24 @@ struct LuaBody {
   BodyId id;
   uint32_t uid;
 };
+
+// A shape of a body (`body:add_shape{}` returns one). Stale after shape:remove() or its body's removal.
+struct LuaShape {
+  static constexpr const char* kMetatable = "rigidlab.shape";
+  Scene::Impl* scene;
+  ShapeId id;
+};
+
+// A joint (`world:add_revolute{}` returns one). Stale once removed or broken.
+struct LuaJoint {
+  static constexpr const char* kMetatable = "rigidlab.joint";
+  Scene::Impl* scene;
+  JointId id;
+  JointType type;  // kept: `kind` stays readable after the joint is gone
+};
+
+// The key of a shape or joint in the handle caches and broken_joints: generation and slot index.
+inline uint64_t handleKey(uint32_t index, uint32_t generation) { return (uint64_t{generation} << 32) | index; }
 
 // A force, spring or damper as Lua sees it.
 struct LuaForceHandle {
@@ -77,6 +111,57 @@ void pushHandle(lua_State* L, const T& value) {
   luaL_setmetatable(L, T::kMetatable);
 }
 
+// The handle of `value` in `cache` under `key`, made and kept there on first use: the same body,
+// shape or joint is the same Lua object while the cache holds it.
+template <typename T>
+sol::object cachedHandle(lua_State* L, sol::table& cache, uint64_t key, const T& value) {
+  sol::object cached = cache.raw_get<sol::object>(key);
+  if (cached.valid() && cached.get_type() != sol::type::lua_nil) return cached;
+  pushHandle(L, value);
+  sol::object handle = sol::stack::pop<sol::object>(L);
+  cache.raw_set(key, handle);
+  return handle;
+}
+
+// __eq of a handle type: two handles of one scene naming the same thing (T::*Key: uid, id).
+template <typename T, auto Key>
+int handlesEqual(lua_State* L) {
+  const T *a = toHandle<T>(L, 1), *b = toHandle<T>(L, 2);
+  lua_pushboolean(L, a && b && a->scene == b->scene && a->*Key == b->*Key);
+  return 1;
+}
+
+// __tostring of a handle type: Describe(handle), e.g. "revolute joint 'hinge'".
+template <typename T, std::string (*Describe)(const T&)>
+int handleToString(lua_State* L) {
+  const T* handle = toHandle<T>(L, 1);
+  const std::string text = handle ? Describe(*handle) : std::string("?");
+  lua_pushlstring(L, text.data(), text.size());
+  return 1;
+}
+
+// Pushes a list {handle(ids[1]), ...}.
+template <typename Id, typename Handle>
+void pushHandles(lua_State* L, const std::vector<Id>& ids, Handle handle) {
+  lua_createtable(L, static_cast<int>(ids.size()), 0);
+  for (size_t i = 0; i < ids.size(); ++i) {
+    handle(ids[i]).push(L);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+}
+
+// A method by name, from a table of them; nullptr if `name` is none of them.
+struct NamedFunction {
+  std::string_view name;
+  lua_CFunction function;
+};
+template <size_t N>
+lua_CFunction lookUp(const NamedFunction (&table)[N], std::string_view name) {
+  for (const NamedFunction& f : table)
+    if (f.name == name) return f.function;
+  return nullptr;
+}
+
 // Creates the metatable `name` in the registry with the given metamethods (nullptr: none) and
 // __metatable = false.
 void registerHandleType(lua_State* L, const char* name, lua_CFunction index, lua_CFunction new_index,
@@ -85,6 +170,10 @@ void registerHandleType(lua_State* L, const char* name, lua_CFunction index, lua
 void registerBodyType(lua_State* L);
 void registerWorldType(lua_State* L);
 void registerDrawType(lua_State* L);
+void registerShapeType(lua_State* L);
+void registerJointType(lua_State* L);
+// A table whose values are weak (the handle caches).
+sol::table makeWeakTable(lua_State* L);
 
 // The handle of a live body (created on first use, then cached in Scene::Impl::handles).
 sol::object bodyHandle(lua_State* L, Scene::Impl& scene, BodyId id);
@@ -94,14 +183,35 @@ BodyId liveBody(lua_State* L, const LuaBody& body, std::string_view function);
 BodyId bodyOption(lua_State* L, Scene::Impl& scene, std::string_view function, std::string_view key,
                   const sol::object& value);
 
+// The scene of `world:<function>(...)`, whose argument 1 must be the world (called with a colon);
+// editedWorld also refuses while the world steps (requireIdle).
+Scene::Impl& selfWorld(lua_State* L, std::string_view function);
+Scene::Impl& editedWorld(lua_State* L, std::string_view function);
+
 // The scene's world; fails "<function>: the scene is closed" while it closes.
 World& liveWorld(lua_State* L, Scene::Impl& scene, std::string_view function);
 // Fails "<function>: not allowed while the world is stepping (from inside a force)" during a step:
 // the API's edits are refused then (World::isStepping).
 void requireIdle(lua_State* L, Scene::Impl& scene, std::string_view function);
-// Host memory a body takes (its record, per-body working arrays, shape and name), charged against
-// the scene's memory limit while it exists (ScriptHost::charge).
+// Host memory a body takes (its record, per-body working arrays, shapes and name), charged against
+// the scene's memory limit while it exists (ScriptHost::charge): the body's own part plus each
+// shape's (shapeHostBytes), so that adding and removing shapes charges and releases their part.
 size_t hostBytes(const World& world, const Body& body);
+size_t shapeHostBytes(const BodyShape& shape);
+// Charges the host memory of a joint just made; over the limit, the joint is destroyed again and
+// the call fails as for bodies.
+void chargeJoint(lua_State* L, Scene::Impl& scene, std::string_view function, JointId id);
+
+// Joints: the world's and a body's joint functions (lua_world_joints.cpp); world:remove(joint) and
+// what a step broke (lua_joint.cpp).
+lua_CFunction jointWorldMethod(std::string_view name);  // add_revolute, ..., joints, find_joint; or nullptr
+int bodyJointsMethod(lua_State* L);                     // body:joints()
+void removeJoint(lua_State* L, const LuaJoint& joint, std::string_view function);
+void noteJointBreaks(Scene::Impl& scene);  // after every step of the scene's world
+
+// Body creation (lua_world_bodies.cpp): world:add_box, add_circle, add_polygon, add_capsule,
+// add_segment, add_chain, add_body; or nullptr.
+lua_CFunction bodyWorldMethod(std::string_view name);
 
 bool isVec2Table(lua_State* L, int index);
 // "body 'ball' (id 3)", "a spring", ... for messages.

@@ -19,4 +19,15 @@ void registerHandleType(lua_State* L, const char* name, lua_CFunction index, lua
   lua_pop(L, 1);
 }
 
+sol::table makeWeakTable(lua_State* L) {
+  lua_newtable(L);
+  lua_createtable(L, 0, 2);
+  lua_pushliteral(L, "v");
+  lua_setfield(L, -2, "__mode");
+  lua_pushboolean(L, 0);
+  lua_setfield(L, -2, "__metatable");
+  lua_setmetatable(L, -2);
+  return sol::stack::pop<sol::table>(L);
+}
+
 }  // namespace rigidlab::lua

@@ -99,6 +99,37 @@ std::string closestName(std::string_view name, const std::vector<std::string_vie
   return best;
 }
 
+std::string fieldName(lua_State* L, std::string_view what, const sol::object& key) {
+  if (key.get_type() != sol::type::string) fail(L, what, "fields are named by strings, got " + describe(key));
+  return key.as<std::string>();
+}
+
+void noSuchField(lua_State* L, std::string_view what, const std::string& k, const std::vector<std::string_view>& names,
+                 std::string hint) {
+  if (hint.empty()) hint = closestName(k, names);
+  fail(L, what, "has no field '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
+}
+
+void requireWritable(lua_State* L, std::string_view what, const std::string& k,
+                     const std::vector<std::string_view>& readable, const std::vector<std::string_view>& writable) {
+  if (std::find(writable.begin(), writable.end(), k) != writable.end()) return;
+  if (std::find(readable.begin(), readable.end(), k) != readable.end()) fail(L, std::string(what) + "." + k, "is read-only");
+  noSuchField(L, what, k, writable);
+}
+
+std::string stringArg(lua_State* L, int index, std::string_view function, std::string_view what) {
+  if (lua_type(L, index) != LUA_TSTRING) fail(L, function, std::string(what) + " must be a string, got " + describe(L, index));
+  size_t length = 0;
+  const char* s = lua_tolstring(L, index, &length);
+  return std::string(s, length);
+}
+
+std::vector<std::string_view> joined(std::initializer_list<const std::vector<std::string_view>*> lists) {
+  std::vector<std::string_view> all;
+  for (const auto* list : lists) all.insert(all.end(), list->begin(), list->end());
+  return all;
+}
+
 bool isVec2Table(lua_State* L, int index) {
   const int ref = hostOf(L).vec2_metatable_ref;
   if (ref == LUA_NOREF || !lua_getmetatable(L, index)) return false;
@@ -146,7 +177,8 @@ sol::object makeVec(lua_State* L, const Vec2& v) {
 
 // ---------------------------------------------------------------------------------------------
 
-Options::Options(lua_State* L, std::string_view function, const sol::object& arg, std::vector<std::string_view> known)
+Options::Options(lua_State* L, std::string_view function, const sol::object& arg, std::vector<std::string_view> known,
+                 const Synonyms& synonyms)
     : L_(L), function_(function) {
   if (arg.get_type() != sol::type::table)
     lua::fail(L, function, "expects a table of named options, e.g. " + std::string(function) + "{ " +
@@ -170,7 +202,9 @@ Options::Options(lua_State* L, std::string_view function, const sol::object& arg
   lua_pop(L, 1);
   if (!unknown.empty()) {
     std::sort(unknown.begin(), unknown.end());
-    const std::string suggestion = closestName(unknown.front(), known);
+    std::string suggestion = closestName(unknown.front(), known);
+    for (const auto& [name, meant] : synonyms)
+      if (name == unknown.front()) suggestion = std::string(meant);
     lua::fail(L, function, "unknown option '" + unknown.front() + "'" +
                                (suggestion.empty() ? "" : " (did you mean '" + suggestion + "'?)"));
   }
@@ -190,28 +224,124 @@ sol::object Options::required(std::string_view key) const {
   return v;
 }
 
+namespace {
+
+// "<subject> <message>", or the message alone for a field write (no subject).
+std::string about(std::string_view subject, const std::string& message) {
+  return subject.empty() ? message : std::string(subject) + " " + message;
+}
+
+}  // namespace
+
+double checkNumber(lua_State* L, std::string_view function, std::string_view subject, const sol::object& v, Range range) {
+  if (v.get_type() != sol::type::number) fail(L, function, about(subject, "must be a number, got " + describe(v)));
+  const double x = v.as<double>();
+  const bool infinity_allowed = range == Range::PositiveOrInfinity || range == Range::NonNegativeOrInfinity;
+  if (!std::isfinite(x) && !(infinity_allowed && x == INFINITY))
+    fail(L, function, about(subject, "must be finite" + std::string(infinity_allowed ? " or math.huge" : "") + ", got " + formatNumber(x)));
+  if ((range == Range::Positive || range == Range::PositiveOrInfinity) && !(x > 0))
+    fail(L, function, about(subject, "must be > 0, got " + formatNumber(x)));
+  if ((range == Range::NonNegative || range == Range::NonNegativeOrInfinity) && !(x >= 0))
+    fail(L, function, about(subject, "must be >= 0, got " + formatNumber(x)));
+  return x;
+}
+
+Vec2 checkVec(lua_State* L, std::string_view function, std::string_view subject, const sol::object& v) {
+  const std::optional<Vec2> p = toVec(L, v);
+  if (!p) fail(L, function, about(subject, "must be a vector {x, y} or vec2(x, y), got " + describe(v)));
+  if (!isFinite(*p)) fail(L, function, about(subject, "must be finite, got " + formatVec(*p)));
+  return *p;
+}
+
+bool checkBool(lua_State* L, std::string_view function, std::string_view subject, const sol::object& v) {
+  if (v.get_type() != sol::type::boolean) fail(L, function, about(subject, "must be true or false, got " + describe(v)));
+  return v.as<bool>();
+}
+
+int64_t checkInteger(lua_State* L, std::string_view function, std::string_view subject, const sol::object& v,
+                     int64_t lo, int64_t hi) {
+  v.push(L);
+  const bool is_int = lua_isinteger(L, -1);
+  const bool whole = is_int || (lua_type(L, -1) == LUA_TNUMBER && std::floor(lua_tonumber(L, -1)) == lua_tonumber(L, -1));
+  const lua_Integer i = is_int ? lua_tointeger(L, -1) : 0;
+  const double x = lua_type(L, -1) == LUA_TNUMBER ? lua_tonumber(L, -1) : 0.0;
+  lua_pop(L, 1);
+  if (!whole) fail(L, function, about(subject, "must be a whole number, got " + describe(v)));
+  if (is_int ? (i < lo || i > hi) : (x < static_cast<double>(lo) || x > static_cast<double>(hi)))
+    fail(L, function, about(subject, "must be between " + std::to_string(lo) + " and " + std::to_string(hi) + ", got " + describe(v)));
+  return is_int ? i : static_cast<int64_t>(x);
+}
+
+uint64_t checkBits(lua_State* L, std::string_view function, std::string_view subject, const sol::object& v) {
+  v.push(L);
+  const int type = lua_type(L, -1);
+  const bool is_int = lua_isinteger(L, -1);
+  const lua_Integer i = is_int ? lua_tointeger(L, -1) : 0;
+  const double x = type == LUA_TNUMBER ? lua_tonumber(L, -1) : 0.0;
+  lua_pop(L, 1);
+  if (is_int) return static_cast<uint64_t>(i);
+  constexpr double kTwo63 = 9223372036854775808.0;
+  if (type != LUA_TNUMBER || std::floor(x) != x || x < -kTwo63 || x >= 2 * kTwo63)
+    fail(L, function, about(subject, "must be an integer set of bits (e.g. 1 << 3, 0x8 or -1 for all 64), got " + describe(v)));
+  return x >= kTwo63 ? static_cast<uint64_t>(x - kTwo63) + (uint64_t{1} << 63)
+                     : static_cast<uint64_t>(static_cast<int64_t>(x));
+}
+
+std::string checkChoice(lua_State* L, std::string_view function, std::string_view subject, const sol::object& v,
+                        const std::vector<std::string_view>& names) {
+  if (v.get_type() == sol::type::string) {
+    const std::string s = v.as<std::string>();
+    if (std::find(names.begin(), names.end(), s) != names.end()) return s;
+  }
+  std::string list;
+  for (size_t i = 0; i < names.size(); ++i)
+    list += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + ("\"" + std::string(names[i]) + "\"");
+  fail(L, function, about(subject, "must be " + list + ", got " + describe(v)));
+}
+
+std::vector<Vec2> checkPoints(lua_State* L, std::string_view function, std::string_view subject, const sol::object& v,
+                              size_t min, size_t max) {
+  if (v.get_type() != sol::type::table)
+    fail(L, function, about(subject, "must be a list of points {{x, y}, ...}, got " + describe(v)));
+  // The raw length: `#` would run a __len metamethod of the script's inside the host.
+  v.push(L);
+  const size_t n = lua_rawlen(L, -1);
+  lua_pop(L, 1);
+  if (n > max) fail(L, function, about(subject, "has " + std::to_string(n) + " points, at most " + std::to_string(max) + " are allowed"));
+  if (n < min) fail(L, function, about(subject, "needs at least " + std::to_string(min) + " points, got " + std::to_string(n)));
+  const sol::table t = v.as<sol::table>();
+  std::vector<Vec2> points;
+  points.reserve(n);
+  for (size_t i = 1; i <= n; ++i) {
+    const sol::object p = t.raw_get<sol::object>(i);
+    const auto q = toVec(L, p);
+    const std::string element = std::string(subject) + "[" + std::to_string(i) + "]";
+    if (!q) fail(L, function, element + " must be a point {x, y}, got " + describe(p));
+    if (!isFinite(*q)) fail(L, function, element + " must be finite, got " + formatVec(*q));
+    points.push_back(*q);
+  }
+  return points;
+}
+
 double Options::number(std::string_view key, std::optional<double> fallback) const {
+  return number(key, Range::Finite, fallback);
+}
+
+double Options::number(std::string_view key, Range range, std::optional<double> fallback) const {
   sol::object v = get(key);
   if (v.get_type() == sol::type::lua_nil) {
     if (!fallback) fail(key, "is required");
     return *fallback;
   }
-  if (v.get_type() != sol::type::number) fail(key, "must be a number, got " + describe(v));
-  const double x = v.as<double>();
-  if (!std::isfinite(x)) fail(key, "must be finite, got " + formatNumber(x));
-  return x;
+  return checkNumber(L_, function_, key, v, range);
 }
 
 double Options::positive(std::string_view key, std::optional<double> fallback) const {
-  const double x = number(key, fallback);
-  if (!(x > 0)) fail(key, "must be > 0, got " + formatNumber(x));
-  return x;
+  return number(key, Range::Positive, fallback);
 }
 
 double Options::nonNegative(std::string_view key, std::optional<double> fallback) const {
-  const double x = number(key, fallback);
-  if (!(x >= 0)) fail(key, "must be >= 0, got " + formatNumber(x));
-  return x;
+  return number(key, Range::NonNegative, fallback);
 }
 
 double Options::inRange(std::string_view key, double lo, double hi, std::optional<double> fallback) const {
@@ -226,13 +356,7 @@ int Options::integer(std::string_view key, int lo, int hi, std::optional<int> fa
     if (!fallback) fail(key, "is required");
     return *fallback;
   }
-  v.push(L_);
-  const bool is_int = lua_isinteger(L_, -1) || (lua_type(L_, -1) == LUA_TNUMBER && std::floor(lua_tonumber(L_, -1)) == lua_tonumber(L_, -1));
-  const double x = lua_type(L_, -1) == LUA_TNUMBER ? lua_tonumber(L_, -1) : 0.0;
-  lua_pop(L_, 1);
-  if (!is_int) fail(key, "must be a whole number, got " + describe(v));
-  if (x < lo || x > hi) fail(key, "must be between " + std::to_string(lo) + " and " + std::to_string(hi) + ", got " + describe(v));
-  return static_cast<int>(x);
+  return static_cast<int>(checkInteger(L_, function_, key, v, lo, hi));
 }
 
 Vec2 Options::vec(std::string_view key, std::optional<Vec2> fallback) const {
@@ -241,17 +365,26 @@ Vec2 Options::vec(std::string_view key, std::optional<Vec2> fallback) const {
     if (!fallback) fail(key, "is required");
     return *fallback;
   }
-  const std::optional<Vec2> p = toVec(L_, v);
-  if (!p) fail(key, "must be a vector {x, y} or vec2(x, y), got " + describe(v));
-  if (!isFinite(*p)) fail(key, "must be finite, got " + formatVec(*p));
-  return *p;
+  return checkVec(L_, function_, key, v);
+}
+
+uint64_t Options::bits(std::string_view key, uint64_t fallback) const {
+  sol::object v = get(key);
+  return v.get_type() == sol::type::lua_nil ? fallback : checkBits(L_, function_, key, v);
+}
+
+std::string Options::choice(std::string_view key, const std::vector<std::string_view>& names, std::string_view fallback) const {
+  sol::object v = get(key);
+  return v.get_type() == sol::type::lua_nil ? std::string(fallback) : checkChoice(L_, function_, key, v, names);
+}
+
+std::vector<Vec2> Options::points(std::string_view key, size_t min, size_t max) const {
+  return checkPoints(L_, function_, key, required(key), min, max);
 }
 
 bool Options::boolean(std::string_view key, bool fallback) const {
   sol::object v = get(key);
-  if (v.get_type() == sol::type::lua_nil) return fallback;
-  if (v.get_type() != sol::type::boolean) fail(key, "must be true or false, got " + describe(v));
-  return v.as<bool>();
+  return v.get_type() == sol::type::lua_nil ? fallback : checkBool(L_, function_, key, v);
 }
 
 std::string Options::string(std::string_view key, std::optional<std::string> fallback, size_t max_bytes) const {
@@ -267,6 +400,43 @@ std::string Options::string(std::string_view key, std::optional<std::string> fal
   if (length > max_bytes)
     fail(key, "must be at most " + std::to_string(max_bytes) + " bytes long, got " + std::to_string(length));
   return v.as<std::string>();
+}
+
+namespace {
+
+bool wordChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+
+}  // namespace
+
+void failCore(lua_State* L, std::string_view function, const InputError& e,
+              const std::vector<std::pair<std::string_view, std::string_view>>& renames) {
+  // Word by word, so that renames may swap names (anchor_a <-> anchor_b) and "lower" never matches
+  // inside "lower_angle".
+  const std::string in = e.what();
+  std::string out;
+  std::string field = e.field();
+  for (const auto& [from, to] : renames)
+    if (field == from) field = std::string(to);
+  for (size_t i = 0; i < in.size();) {
+    if (!wordChar(in[i])) {
+      out += in[i++];
+      continue;
+    }
+    size_t j = i;
+    while (j < in.size() && wordChar(in[j])) ++j;
+    std::string word = in.substr(i, j - i);
+    for (const auto& [from, to] : renames)
+      if (word == from) {
+        word = std::string(to);
+        break;
+      }
+    out += word;
+    i = j;
+  }
+  bool mentioned = field.empty();
+  for (size_t at = out.find(field); !mentioned && at != std::string::npos; at = out.find(field, at + 1))
+    mentioned = (at == 0 || !wordChar(out[at - 1])) && (at + field.size() == out.size() || !wordChar(out[at + field.size()]));
+  fail(L, function, mentioned ? out : field + ": " + out);
 }
 
 std::string boundedString(lua_State* L, int index, std::string_view function, std::string_view what, size_t max_bytes) {

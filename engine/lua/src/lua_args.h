@@ -7,12 +7,15 @@
 // Tables are read with raw access, so a script's metamethods never run inside the host.
 #pragma once
 
+#include <cstdint>
 #include <initializer_list>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
+#include "rigidlab/error.h"
 #include "rigidlab/math.h"
 #include "script_host.h"
 
@@ -55,17 +58,67 @@ std::string describe(lua_State* L, int index);
 // changed is another word ('mass'), not a slip.
 std::string closestName(std::string_view name, const std::vector<std::string_view>& candidates);
 
+// The names of several lists in one (a function's accepted options).
+std::vector<std::string_view> joined(std::initializer_list<const std::vector<std::string_view>*> lists);
+
+// Handle fields: the name of `handle.<key>`, or fails "<what>: fields are named by strings, got
+// 5"; "<what>: has no field 'x' (did you mean 'y'?)" with closestName's suggestion or `hint`; and
+// for a write "<what>.<k>: is read-only" unless `k` is writable (or has no field, as above).
+std::string fieldName(lua_State* L, std::string_view what, const sol::object& key);
+[[noreturn]] void noSuchField(lua_State* L, std::string_view what, const std::string& k,
+                              const std::vector<std::string_view>& names, std::string hint = "");
+void requireWritable(lua_State* L, std::string_view what, const std::string& k,
+                     const std::vector<std::string_view>& readable, const std::vector<std::string_view>& writable);
+// Argument `index`, a string: fails "<function>: <what> must be a string, got 5".
+std::string stringArg(lua_State* L, int index, std::string_view function, std::string_view what);
+
 // A vector from a vec2 table, {x = , y = } or {x, y}; nullopt if the value is none of these.
 std::optional<Vec2> toVec(lua_State* L, const sol::object& value);
 // Pushes a new vec2 table.
 void pushVec(lua_State* L, const Vec2& v);
 sol::object makeVec(lua_State* L, const Vec2& v);
 
+// Checks of one value, shared by options (`subject` is the option's name: "add_box: width must be
+// > 0, got -1") and field writes (`subject` is empty: "body.mass: must be > 0, got -1").
+enum class Range {
+  Finite,                 // any finite number
+  Positive,               // > 0
+  NonNegative,            // >= 0
+  PositiveOrInfinity,     // > 0, math.huge allowed (break_force: "never")
+  NonNegativeOrInfinity,  // >= 0, math.huge allowed (max_length: "no limit")
+};
+double checkNumber(lua_State* L, std::string_view function, std::string_view subject, const sol::object& v, Range range);
+Vec2 checkVec(lua_State* L, std::string_view function, std::string_view subject, const sol::object& v);  // finite
+bool checkBool(lua_State* L, std::string_view function, std::string_view subject, const sol::object& v);
+// A whole number between lo and hi (a float with a whole value is accepted).
+int64_t checkInteger(lua_State* L, std::string_view function, std::string_view subject, const sol::object& v,
+                     int64_t lo, int64_t hi);
+// A 64-bit set of bits (collision category and mask): any Lua integer, taken as its 64 bits (-1 is
+// every bit, 1 << 63 the top one), or a float with a whole value in [-2^63, 2^64) (2^3 is 8.0).
+uint64_t checkBits(lua_State* L, std::string_view function, std::string_view subject, const sol::object& v);
+// One of `names`, e.g. type = "kinematic"; the message lists them.
+std::string checkChoice(lua_State* L, std::string_view function, std::string_view subject, const sol::object& v,
+                        const std::vector<std::string_view>& names);
+// A list of at least `min` and at most `max` finite points {{x, y}, ...}, read raw; a bad element is
+// named "<subject>[i]".
+std::vector<Vec2> checkPoints(lua_State* L, std::string_view function, std::string_view subject, const sol::object& v,
+                              size_t min, size_t max);
+
+// A core InputError as an error of `function`. The core names its fields mostly as the Lua API
+// does; `renames` maps the others (whole words of the message: {"lower", "lower_angle"}). A message
+// that does not mention its field gets it in front ("velocity: a static body cannot move ...").
+[[noreturn]] void failCore(lua_State* L, std::string_view function, const InputError& e,
+                           const std::vector<std::pair<std::string_view, std::string_view>>& renames = {});
+
 // A table of named options, checked against the names a function accepts.
 class Options {
  public:
-  // Fails unless `arg` is a table whose keys are all in `known` (unknown: "unknown option 'x'").
-  Options(lua_State* L, std::string_view function, const sol::object& arg, std::vector<std::string_view> known);
+  // Fails unless `arg` is a table whose keys are all in `known` (unknown: "unknown option 'x'",
+  // with closestName's suggestion, or the one `synonyms` gives for a name of a similar function:
+  // {"lower_angle", "lower"} for a prismatic joint).
+  using Synonyms = std::vector<std::pair<std::string_view, std::string_view>>;
+  Options(lua_State* L, std::string_view function, const sol::object& arg, std::vector<std::string_view> known,
+          const Synonyms& synonyms = {});
 
   bool has(std::string_view key) const;
   sol::object get(std::string_view key) const;
@@ -75,8 +128,14 @@ class Options {
   double nonNegative(std::string_view key, std::optional<double> fallback = std::nullopt) const;  // ≥ 0
   double inRange(std::string_view key, double lo, double hi, std::optional<double> fallback = std::nullopt) const;
   int integer(std::string_view key, int lo, int hi, std::optional<int> fallback = std::nullopt) const;
+  // Finite numbers in `range`; the ...OrInfinity ranges also take math.huge.
+  double number(std::string_view key, Range range, std::optional<double> fallback = std::nullopt) const;
   Vec2 vec(std::string_view key, std::optional<Vec2> fallback = std::nullopt) const;  // finite
   bool boolean(std::string_view key, bool fallback) const;
+  uint64_t bits(std::string_view key, uint64_t fallback) const;  // checkBits
+  std::string choice(std::string_view key, const std::vector<std::string_view>& names, std::string_view fallback) const;
+  // checkPoints; required.
+  std::vector<Vec2> points(std::string_view key, size_t min, size_t max) const;
   // At most `max_bytes` long: a longer string is refused before the host copies it.
   std::string string(std::string_view key, std::optional<std::string> fallback = std::nullopt,
                      size_t max_bytes = SIZE_MAX) const;

@@ -1,17 +1,24 @@
 // Body handles in Lua: fields (read, and write where it makes sense) and methods.
 //
-//   read/write  position (body origin), angle, velocity, angular_velocity, mass, static, name,
-//               restitution, friction, static_friction
-//   read only   id, center (world centre of mass), inertia, density, shape ("circle"|"polygon"),
-//               radius (circles), vertices (polygons, body coordinates), removed
+//   read/write  position (body origin), angle, velocity, angular_velocity, mass, type, static, name,
+//               awake, linear_damping, angular_damping, gravity_scale, fixed_rotation, bullet,
+//               enabled, user_data; and for all its shapes restitution, friction, static_friction,
+//               sensor, category, mask, group
+//   read only   id, center (world centre of mass), local_center, inertia, density, shapes, removed;
+//               for a one-shape body shape ("circle" | "polygon" | "capsule" | ...), radius, vertices
 //   methods     body:apply_impulse(j [, point])          point: world, default the centre of mass
 //               body:apply_force(f [, point [, duration]])  duration default: the next step only
+//               body:add_shape{...} (lua_shape.cpp), body:set_target{position, angle, time},
+//               body:joints() (lua_joint.cpp)
 // A misspelt field is an error naming the closest valid one.
 #include <algorithm>
 
 #include "api_names.h"
 #include "bindings.h"
 #include "lua_args.h"
+#include "lua_body_args.h"
+#include "lua_joint.h"
+#include "lua_shape.h"
 #include "rigidlab/error.h"
 #include "rigidlab/lua/scene_text.h"
 
@@ -31,18 +38,12 @@ const LuaBody& selfBody(lua_State* L, const sol::stack_object& self, std::string
   return *b;
 }
 
-double numberArg(lua_State* L, std::string_view function, std::string_view what, const sol::stack_object& v) {
-  if (v.get_type() != sol::type::number) fail(L, function, std::string(what) + " must be a number, got " + describe(v));
-  const double x = v.as<double>();
-  if (!std::isfinite(x)) fail(L, function, std::string(what) + " must be finite, got " + formatNumber(x));
-  return x;
+double numberArg(lua_State* L, std::string_view function, std::string_view what, const sol::object& v) {
+  return checkNumber(L, function, what, v, Range::Finite);
 }
 
 Vec2 vecArg(lua_State* L, std::string_view function, std::string_view what, const sol::object& v) {
-  const auto p = toVec(L, v);
-  if (!p) fail(L, function, std::string(what) + " must be a vector {x, y} or vec2(x, y), got " + describe(v));
-  if (!isFinite(*p)) fail(L, function, std::string(what) + " must be finite, got " + formatVec(*p));
-  return *p;
+  return checkVec(L, function, what, v);
 }
 
 int applyImpulse(lua_State* L) {
@@ -83,19 +84,91 @@ int applyForce(lua_State* L) {
   return 0;
 }
 
+int setTarget(lua_State* L) {
+  const LuaBody& b = selfBody(L, sol::stack_object(L, 1), "set_target");
+  requireIdle(L, *b.scene, "set_target");
+  const BodyId id = liveBody(L, b, "set_target");
+  World& w = worldOf(L, b, "set_target");
+  const Options o(L, "set_target", sol::stack_object(L, 2), api::kTargetOptions);
+  const Body& body = w.body(id);
+  const Vec2 position = o.vec("position", body.position());
+  const double angle = o.number("angle", body.angle);
+  const double time = o.positive("time");
+  if (!body.isKinematic())
+    fail(L, "set_target", std::string("moves kinematic bodies, and this one is ") + bodyTypeName(body.type) +
+                              " (make it type = \"kinematic\")");
+  try {
+    w.setTarget(id, position, angle, time);
+  } catch (const InputError& e) {
+    failCore(L, "set_target", e);
+  }
+  return 0;
+}
+
+lua_CFunction bodyMethod(std::string_view name) {
+  static const NamedFunction kMethods[] = {{"apply_impulse", guarded<applyImpulse>},
+                                           {"apply_force", guarded<applyForce>},
+                                           {"add_shape", addShapeMethod},
+                                           {"set_target", guarded<setTarget>},
+                                           {"joints", bodyJointsMethod}};
+  return lookUp(kMethods, name);
+}
+
+// The fields a body has for its one shape (the others of kShapeWritable stand for a property all
+// its shapes share).
+bool isOneShapeField(std::string_view k) { return k == "shape" || k == "radius" || k == "vertices"; }
+
+sol::object oneShapeField(lua_State* L, const World& w, const Body& b, const std::string& k) {
+  if (b.shapes.empty()) return sol::make_object(L, sol::lua_nil);
+  if (b.shapes.size() > 1)
+    fail(L, "body." + k, "the body has " + std::to_string(b.shapes.size()) + " shapes; read body.shapes[i]." +
+                             (k == "shape" ? "kind" : k));
+  const Shape& shape = w.shape(b.shapes.front()).geometry;
+  if (k == "shape") return sol::make_object(L, shapeTypeName(shape.type));
+  if (k == "radius")
+    return shape.type == ShapeType::Circle || shape.type == ShapeType::Capsule ? sol::make_object(L, shape.radius)
+                                                                               : sol::make_object(L, sol::lua_nil);
+  if (shape.type != ShapeType::Polygon) return sol::make_object(L, sol::lua_nil);
+  lua_createtable(L, static_cast<int>(shape.vertices.size()), 0);
+  for (size_t i = 0; i < shape.vertices.size(); ++i) {
+    pushVec(L, shape.vertices[i]);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  return sol::stack::pop<sol::object>(L);
+}
+
+// The value all the body's shapes share; a compound body whose shapes differ has none.
+sol::object sharedShapeProperty(lua_State* L, const World& w, const Body& b, const std::string& k) {
+  if (b.shapes.empty()) return sol::make_object(L, sol::lua_nil);
+  const sol::object first = shapeProperty(L, w.shape(b.shapes.front()), k);
+  for (size_t i = 1; i < b.shapes.size(); ++i) {
+    const sol::object other = shapeProperty(L, w.shape(b.shapes[i]), k);
+    first.push(L);
+    other.push(L);
+    const bool same = lua_rawequal(L, -1, -2);
+    lua_pop(L, 2);
+    if (!same)
+      fail(L, "body." + k, "the body's " + std::to_string(b.shapes.size()) + " shapes differ in " + k + " (shape 1: " +
+                               describe(first) + ", shape " + std::to_string(i + 1) + ": " + describe(other) +
+                               "); read body.shapes[i]." + k);
+  }
+  return first;
+}
+
+sol::object shapesList(lua_State* L, Scene::Impl& scene, const Body& b) {
+  pushHandles(L, b.shapes, [&](ShapeId id) { return shapeHandle(L, scene, id); });
+  return sol::stack::pop<sol::object>(L);
+}
+
 sol::object bodyIndex(lua_State* L, const LuaBody& self, const sol::stack_object& key) {
-  if (key.get_type() != sol::type::string) fail(L, "body", "fields are named by strings, got " + describe(key));
-  const std::string k = key.as<std::string>();
+  const std::string k = fieldName(L, "body", key);
   if (k == "removed") return sol::make_object(L, !worldOf(L, self, "body.removed").isValid(self.id));
   if (k == "id") return sol::make_object(L, self.uid);
-  if (k == "apply_impulse" || k == "apply_force") {
-    lua_pushcfunction(L, k == "apply_impulse" ? guarded<applyImpulse> : guarded<applyForce>);
+  if (const lua_CFunction f = bodyMethod(k)) {
+    lua_pushcfunction(L, f);
     return sol::stack::pop<sol::object>(L);
   }
-  if (std::find(kBodyReadable.begin(), kBodyReadable.end(), k) == kBodyReadable.end()) {
-    const std::string hint = closestName(k, kBodyReadable);
-    fail(L, "body", "has no field '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
-  }
+  if (std::find(kBodyReadable.begin(), kBodyReadable.end(), k) == kBodyReadable.end()) noSuchField(L, "body", k, kBodyReadable);
   const BodyId id = liveBody(L, self, "body." + k);
   const Body& b = worldOf(L, self, "body." + k).body(id);
   if (k == "position") return makeVec(L, b.position());
@@ -109,33 +182,25 @@ sol::object bodyIndex(lua_State* L, const LuaBody& self, const sol::stack_object
   if (k == "static") return sol::make_object(L, b.isStatic());
   if (k == "awake") return sol::make_object(L, !b.isStatic() && b.awake);
   if (k == "name") return sol::make_object(L, b.name);
-  if (b.shapes.empty()) return sol::make_object(L, sol::lua_nil);
-  const BodyShape& first = worldOf(L, self, "body." + k).shape(b.shapes.front());
-  const Shape& shape = first.geometry;
-  if (k == "restitution") return sol::make_object(L, first.material.restitution);
-  if (k == "friction") return sol::make_object(L, first.material.friction);
-  if (k == "static_friction") return sol::make_object(L, first.material.static_friction);
-  if (k == "shape") return sol::make_object(L, shape.type == ShapeType::Polygon ? "polygon" : shapeTypeName(shape.type));
-  if (k == "radius") return shape.type == ShapeType::Circle ? sol::make_object(L, shape.radius) : sol::make_object(L, sol::lua_nil);
-  // vertices
-  if (shape.type != ShapeType::Polygon) return sol::make_object(L, sol::lua_nil);
-  lua_createtable(L, static_cast<int>(shape.vertices.size()), 0);
-  for (size_t i = 0; i < shape.vertices.size(); ++i) {
-    pushVec(L, shape.vertices[i]);
-    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
-  }
-  return sol::stack::pop<sol::object>(L);
+  if (k == "type") return sol::make_object(L, bodyTypeName(b.type));
+  if (k == "local_center") return makeVec(L, b.local_center);
+  if (k == "linear_damping") return sol::make_object(L, b.linear_damping);
+  if (k == "angular_damping") return sol::make_object(L, b.angular_damping);
+  if (k == "gravity_scale") return sol::make_object(L, b.gravity_scale);
+  if (k == "fixed_rotation") return sol::make_object(L, b.fixed_rotation);
+  if (k == "bullet") return sol::make_object(L, b.bullet);
+  if (k == "enabled") return sol::make_object(L, b.enabled);
+  if (k == "user_data") return self.scene->user_data.raw_get<sol::object>(self.uid);
+  const World& w = worldOf(L, self, "body." + k);
+  if (k == "shapes") return shapesList(L, *self.scene, b);
+  if (isOneShapeField(k)) return oneShapeField(L, w, b, k);
+  return sharedShapeProperty(L, w, b, k);
 }
 
 void bodyNewIndex(lua_State* L, const LuaBody& self, const sol::stack_object& key, const sol::stack_object& value) {
-  if (key.get_type() != sol::type::string) fail(L, "body", "fields are named by strings, got " + describe(key));
-  const std::string k = key.as<std::string>();
+  const std::string k = fieldName(L, "body", key);
   const std::string function = "body." + k;
-  if (std::find(kBodyWritable.begin(), kBodyWritable.end(), k) == kBodyWritable.end()) {
-    if (std::find(kBodyReadable.begin(), kBodyReadable.end(), k) != kBodyReadable.end()) fail(L, function, "is read-only");
-    const std::string hint = closestName(k, kBodyWritable);
-    fail(L, "body", "has no field '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
-  }
+  requireWritable(L, "body", k, kBodyReadable, kBodyWritable);
   requireIdle(L, *self.scene, function);
   const BodyId id = liveBody(L, self, function);
   World& w = worldOf(L, self, function);
@@ -146,19 +211,41 @@ void bodyNewIndex(lua_State* L, const LuaBody& self, const sol::stack_object& ke
     } else if (k == "angle") {
       w.setTransform(id, b.position(), numberArg(L, function, "value", value));
     } else if (k == "velocity") {
-      w.setVelocity(id, vecArg(L, function, "value", value));
+      const Vec2 v = vecArg(L, function, "value", value);
+      if (b.isStatic() && v != Vec2::Zero())
+        fail(L, function, "a static body cannot move, got " + formatVec(v) +
+                              ": make it kinematic (body.type = \"kinematic\") to give it a velocity");
+      w.setVelocity(id, v);
     } else if (k == "angular_velocity") {
-      w.setAngularVelocity(id, numberArg(L, function, "value", value));
+      const double omega = numberArg(L, function, "value", value);
+      if (b.isStatic() && omega != 0.0)
+        fail(L, function, "a static body cannot turn, got " + formatNumber(omega) +
+                              ": make it kinematic (body.type = \"kinematic\") to give it an angular velocity");
+      w.setAngularVelocity(id, omega);
     } else if (k == "mass") {
       const double m = numberArg(L, function, "value", value);
       if (!(m > 0)) fail(L, function, "must be > 0, got " + formatNumber(m));
       w.setMass(id, m);
     } else if (k == "static") {
-      if (value.get_type() != sol::type::boolean) fail(L, function, "must be true or false, got " + describe(value));
-      w.setType(id, value.as<bool>() ? BodyType::Static : BodyType::Dynamic);
+      w.setType(id, checkBool(L, function, "", value) ? BodyType::Static : BodyType::Dynamic);
+    } else if (k == "type") {
+      w.setType(id, bodyType(L, function, "", value));
     } else if (k == "awake") {
-      if (value.get_type() != sol::type::boolean) fail(L, function, "must be true or false, got " + describe(value));
-      if (value.as<bool>()) w.wake(id);  // bodies fall asleep on their own; a script can only wake them
+      if (checkBool(L, function, "", value)) w.wake(id);  // bodies fall asleep on their own; a script can only wake them
+    } else if (k == "linear_damping") {
+      w.setLinearDamping(id, checkNumber(L, function, "", value, Range::NonNegative));
+    } else if (k == "angular_damping") {
+      w.setAngularDamping(id, checkNumber(L, function, "", value, Range::NonNegative));
+    } else if (k == "gravity_scale") {
+      w.setGravityScale(id, checkNumber(L, function, "", value, Range::Finite));
+    } else if (k == "fixed_rotation") {
+      w.setFixedRotation(id, checkBool(L, function, "", value));
+    } else if (k == "bullet") {
+      w.setBullet(id, checkBool(L, function, "", value));
+    } else if (k == "enabled") {
+      w.setEnabled(id, checkBool(L, function, "", value));
+    } else if (k == "user_data") {
+      self.scene->user_data.raw_set(self.uid, sol::object(value));  // any value, kept as it is
     } else if (k == "name") {
       if (value.get_type() != sol::type::string) fail(L, function, "must be a string, got " + describe(value));
       std::string name = boundedString(L, value.stack_index(), function, "", kNameBytes);
@@ -166,17 +253,13 @@ void bodyNewIndex(lua_State* L, const LuaBody& self, const sol::stack_object& ke
       if (name.size() > old_size) self.scene->host->charge(L, function, name.size() - old_size);
       self.scene->host->release(old_size - std::min(old_size, name.size()));
       w.setName(id, std::move(name));
-    } else {
-      Material m = b.shapes.empty() ? Material{} : w.shape(b.shapes.front()).material;
-      const double x = numberArg(L, function, "value", value);
-      if (k == "restitution") m.restitution = x;
-      if (k == "friction") m.friction = x;
-      if (k == "static_friction") m.static_friction = x;
-      w.setMaterial(id, m);
+    } else {  // a property of every shape
+      if (b.shapes.empty()) fail(L, function, "the body has no shapes (add one with body:add_shape{...})");
+      const std::vector<ShapeId> shapes = b.shapes;
+      for (const ShapeId s : shapes) setShapeProperty(L, w, s, function, k, value);
     }
   } catch (const InputError& e) {
-    // The core names its own field ("restitution must be between 0 and 1, got 2"); say which body field.
-    fail(L, function, e.what());
+    failCore(L, function, e);  // the core names its own field ("a body with a segment ... cannot be dynamic")
   }
 }
 
@@ -203,33 +286,16 @@ int bodyNewIndexMeta(lua_State* L) {
   return 0;
 }
 
-int bodyToStringMeta(lua_State* L) {
-  const std::string text = bodyToString(selfBody(L, sol::stack_object(L, 1), "tostring"));
-  lua_pushlstring(L, text.data(), text.size());
-  return 1;
-}
-
-int bodyEqualMeta(lua_State* L) {
-  const LuaBody *a = toHandle<LuaBody>(L, 1), *b = toHandle<LuaBody>(L, 2);
-  lua_pushboolean(L, a && b && a->scene == b->scene && a->uid == b->uid);
-  return 1;
-}
-
 }  // namespace
 
 void registerBodyType(lua_State* L) {
-  registerHandleType(L, LuaBody::kMetatable, guarded<bodyIndexMeta>, guarded<bodyNewIndexMeta>, guarded<bodyToStringMeta>,
-                     guarded<bodyEqualMeta>);
+  registerHandleType(L, LuaBody::kMetatable, guarded<bodyIndexMeta>, guarded<bodyNewIndexMeta>, guarded<handleToString<LuaBody, bodyToString>>,
+                     guarded<handlesEqual<LuaBody, &LuaBody::uid>>);
 }
 
 sol::object bodyHandle(lua_State* L, Scene::Impl& scene, BodyId id) {
   const uint32_t uid = scene.world->body(id).uid;
-  sol::object cached = scene.handles.raw_get<sol::object>(uid);
-  if (cached.valid() && cached.get_type() != sol::type::lua_nil) return cached;
-  pushHandle(L, LuaBody{&scene, id, uid});
-  sol::object handle = sol::stack::pop<sol::object>(L);
-  scene.handles.raw_set(uid, handle);
-  return handle;
+  return cachedHandle(L, scene.handles, uid, LuaBody{&scene, id, uid});
 }
 
 BodyId liveBody(lua_State* L, const LuaBody& body, std::string_view function) {
@@ -252,6 +318,8 @@ BodyId bodyOption(lua_State* L, Scene::Impl& scene, std::string_view function, s
 
 std::string describeHandle(lua_State* L, int index) {
   if (const LuaBody* b = toHandle<LuaBody>(L, index)) return bodyToString(*b);
+  if (const LuaShape* s = toHandle<LuaShape>(L, index)) return "a " + describeShape(*s);
+  if (const LuaJoint* j = toHandle<LuaJoint>(L, index)) return "a " + describeJoint(*j);
   if (const LuaForceHandle* f = toHandle<LuaForceHandle>(L, index)) return std::string("a ") + f->kind;
   if (toHandle<LuaWorld>(L, index)) return "the world";
   if (toHandle<LuaDraw>(L, index)) return "the draw object";

@@ -1,9 +1,10 @@
 // The `world` object scenes receive in PopulateWorld, OnStep, Check and OnKey.
 //
-//   fields   gravity (vec2), integrator (string), dt, iterations: read and write
-//            time, step_count, title: read only
-//   methods  add_box, add_circle, add_polygon, add_spring, add_damper, add_force, bodies, find,
-//            remove, step, kinetic_energy, potential_energy
+//   fields   gravity (vec2), integrator (string), dt, solver, iterations, substeps, sleeping: read
+//            and write; time, step_count, title: read only
+//   methods  add_spring, add_damper, add_force, bodies, find, remove, step, kinetic_energy,
+//            potential_energy here; the body functions (add_box, ...) in lua_world_bodies.cpp, the
+//            joint functions (add_revolute, ..., joints, find_joint) in lua_joint_create.cpp
 // Forces, springs and dampers are returned as handles with `kind`, `removed` and `remove()`.
 #include <algorithm>
 
@@ -11,133 +12,22 @@
 #include "bindings.h"
 #include "lua_args.h"
 #include "lua_force.h"
+#include "lua_shape.h"
 #include "rigidlab/error.h"
 #include "rigidlab/lua/scene_text.h"
 
 namespace rigidlab::lua {
 namespace {
 
-using api::kBodyOptions;
 using api::kWorldFields;
 using api::kWorldMethods;
-
-Scene::Impl& selfWorld(lua_State* L, const sol::stack_object& self, std::string_view function) {
-  const LuaWorld* world = toHandle<LuaWorld>(L, self.stack_index());
-  if (!world)
-    fail(L, function, "call it as world:" + std::string(function) + "(...), with a colon; got " + describe(self) +
-                          " as the world");
-  Scene::Impl& scene = *world->scene;
-  liveWorld(L, scene, function);
-  return scene;
-}
-
-// selfWorld for the functions that change the world: not from inside a force.
-Scene::Impl& editedWorld(lua_State* L, const sol::stack_object& self, std::string_view function) {
-  Scene::Impl& scene = selfWorld(L, self, function);
-  requireIdle(L, scene, function);
-  return scene;
-}
-
-std::vector<std::string_view> with(std::vector<std::string_view> base, std::initializer_list<std::string_view> more) {
-  base.insert(base.end(), more);
-  return base;
-}
-
-// Creates the body from the common options and a shape; core errors become Lua errors.
-sol::object createBody(lua_State* L, Scene::Impl& scene, const Options& o, const Shape& shape) {
-  BodyDef d;
-  d.shape = shape;
-  d.type = o.boolean("static", false) ? BodyType::Static : BodyType::Dynamic;
-  d.position = o.vec("position", Vec2::Zero());
-  d.angle = o.number("angle", 0.0);
-  d.velocity = o.vec("velocity", Vec2::Zero());
-  d.angular_velocity = o.number("angular_velocity", 0.0);
-  if (o.has("mass") && o.has("density")) o.fail("mass", "and density cannot both be given (mass sets the density)");
-  if (o.has("mass")) {
-    d.mass = o.positive("mass");
-  } else {
-    d.density = o.positive("density", 1.0);
-  }
-  d.restitution = o.inRange("restitution", 0.0, 1.0, 0.0);
-  d.friction = o.nonNegative("friction", 0.6);
-  if (o.has("static_friction")) d.static_friction = o.nonNegative("static_friction");
-  d.name = o.string("name", "", kNameBytes);
-  BodyId id;
-  try {
-    id = scene.world->createBody(d);
-  } catch (const InputError& e) {
-    fail(L, o.function(), e.what());  // the core's message names the field and the value
-  }
-  try {
-    scene.host->charge(L, o.function(), hostBytes(*scene.world, scene.world->body(id)));
-  } catch (...) {
-    scene.world->destroyBody(id);  // over the memory limit: as if it had not been made
-    throw;
-  }
-  return bodyHandle(L, scene, id);
-}
-
-int addBox(lua_State* L) {
-  Scene::Impl& scene = editedWorld(L, sol::stack_object(L, 1), "add_box");
-  const Options o(L, "add_box", sol::stack_object(L, 2), with(kBodyOptions, {"width", "height"}));
-  Shape shape;
-  try {
-    shape = makeBox(o.positive("width"), o.positive("height"));
-  } catch (const InputError& e) {
-    fail(L, "add_box", e.what());  // names width or height and the value
-  }
-  createBody(L, scene, o, shape).push(L);
-  return 1;
-}
-
-int addCircle(lua_State* L) {
-  Scene::Impl& scene = editedWorld(L, sol::stack_object(L, 1), "add_circle");
-  const Options o(L, "add_circle", sol::stack_object(L, 2), with(kBodyOptions, {"radius"}));
-  const Shape shape = makeCircle(o.positive("radius"));
-  createBody(L, scene, o, shape).push(L);
-  return 1;
-}
-
-int addPolygon(lua_State* L) {
-  Scene::Impl& scene = editedWorld(L, sol::stack_object(L, 1), "add_polygon");
-  const Options o(L, "add_polygon", sol::stack_object(L, 2), with(kBodyOptions, {"vertices"}));
-  const sol::object list = o.get("vertices");
-  if (list.get_type() != sol::type::table)
-    o.fail("vertices", list.get_type() == sol::type::lua_nil ? "is required"
-                                                             : "must be a list of points {{x, y}, ...}, got " + describe(list));
-  // The raw length: `#` would run a __len metamethod of the script's inside the host.
-  list.push(L);
-  const size_t n = lua_rawlen(L, -1);
-  lua_pop(L, 1);
-  const sol::table t = list.as<sol::table>();
-  if (n > static_cast<size_t>(kMaxPolygonVertices))
-    o.fail("vertices", "has " + std::to_string(n) + " points, at most " + std::to_string(kMaxPolygonVertices) +
-                           " are allowed");
-  std::vector<Vec2> points;
-  for (size_t i = 1; i <= n; ++i) {
-    const sol::object p = t.raw_get<sol::object>(i);
-    const auto v = toVec(L, p);
-    const std::string field = "vertices[" + std::to_string(i) + "]";
-    if (!v) o.fail(field, "must be a point {x, y}, got " + describe(p));
-    if (!isFinite(*v)) o.fail(field, "must be finite, got " + formatVec(*v));
-    points.push_back(*v);
-  }
-  Shape shape;
-  try {
-    shape = makePolygon(points);
-  } catch (const InputError& e) {
-    fail(L, "add_polygon", e.what());
-  }
-  createBody(L, scene, o, shape).push(L);
-  return 1;
-}
 
 void pushForceHandle(lua_State* L, Scene::Impl& scene, ForceId id, const char* kind) {
   pushHandle(L, LuaForceHandle{&scene, id, kind});
 }
 
 int addSpring(lua_State* L) {
-  Scene::Impl& scene = editedWorld(L, sol::stack_object(L, 1), "add_spring");
+  Scene::Impl& scene = editedWorld(L, "add_spring");
   const Options o(L, "add_spring", sol::stack_object(L, 2),
                   api::kSpringOptions);
   SpringDef d;
@@ -168,7 +58,7 @@ int addSpring(lua_State* L) {
 }
 
 int addDamper(lua_State* L) {
-  Scene::Impl& scene = editedWorld(L, sol::stack_object(L, 1), "add_damper");
+  Scene::Impl& scene = editedWorld(L, "add_damper");
   const Options o(L, "add_damper", sol::stack_object(L, 2), api::kDamperOptions);
   DamperDef d;
   d.body = bodyOption(L, scene, "add_damper", "body", o.get("body"));
@@ -185,7 +75,7 @@ int addDamper(lua_State* L) {
 }
 
 int addForce(lua_State* L) {
-  Scene::Impl& scene = editedWorld(L, sol::stack_object(L, 1), "add_force");
+  Scene::Impl& scene = editedWorld(L, "add_force");
   const Options o(L, "add_force", sol::stack_object(L, 2), api::kForceOptions);
   const BodyId body = bodyOption(L, scene, "add_force", "body", o.get("body"));
   const sol::object fn = o.get("evaluate");
@@ -212,28 +102,21 @@ int addForce(lua_State* L) {
 }
 
 int bodies(lua_State* L) {
-  Scene::Impl& scene = selfWorld(L, sol::stack_object(L, 1), "bodies");
-  const std::vector<BodyId> ids = scene.world->bodyIds();
-  lua_createtable(L, static_cast<int>(ids.size()), 0);
-  for (size_t i = 0; i < ids.size(); ++i) {
-    bodyHandle(L, scene, ids[i]).push(L);
-    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
-  }
+  Scene::Impl& scene = selfWorld(L, "bodies");
+  pushHandles(L, scene.world->bodyIds(), [&](BodyId id) { return bodyHandle(L, scene, id); });
   return 1;
 }
 
 int find(lua_State* L) {
-  Scene::Impl& scene = selfWorld(L, sol::stack_object(L, 1), "find");
-  sol::stack_object name(L, 2);
-  if (name.get_type() != sol::type::string) fail(L, "find", "name must be a string, got " + describe(name));
-  const auto id = scene.world->findBody(std::string_view(name.as<std::string>()));
+  Scene::Impl& scene = selfWorld(L, "find");
+  const auto id = scene.world->findBody(std::string_view(stringArg(L, 2, "find", "name")));
   if (!id) return 0;
   bodyHandle(L, scene, *id).push(L);
   return 1;
 }
 
 int remove(lua_State* L) {
-  Scene::Impl& scene = editedWorld(L, sol::stack_object(L, 1), "remove");
+  Scene::Impl& scene = editedWorld(L, "remove");
   sol::stack_object what(L, 2);
   try {
     if (const LuaBody* body = toHandle<LuaBody>(L, 2)) {
@@ -244,12 +127,19 @@ int remove(lua_State* L) {
       scene.world->destroyBody(id);
       scene.host->release(bytes);
       scene.handles.raw_set(b.uid, sol::lua_nil);
+      scene.user_data.raw_set(b.uid, sol::lua_nil);
+    } else if (const LuaShape* shape = toHandle<LuaShape>(L, 2)) {
+      if (shape->scene != &scene) fail(L, "remove", "the shape belongs to another scene");
+      removeShape(L, scene, liveShape(L, *shape, "remove"));
+    } else if (const LuaJoint* joint = toHandle<LuaJoint>(L, 2)) {
+      if (joint->scene != &scene) fail(L, "remove", "the joint belongs to another scene");
+      removeJoint(L, *joint, "remove");
     } else if (const LuaForceHandle* force = toHandle<LuaForceHandle>(L, 2)) {
       const LuaForceHandle& f = *force;
       if (!scene.world->isValid(f.id)) fail(L, "remove", std::string("the ") + f.kind + " was already removed (or has expired)");
       scene.world->removeForce(f.id);
     } else {
-      fail(L, "remove", "expects a body, force, spring or damper, got " + describe(what));
+      fail(L, "remove", "expects a body, shape, joint, force, spring or damper, got " + describe(what));
     }
   } catch (const InputError& e) {
     fail(L, "remove", e.what());
@@ -258,7 +148,7 @@ int remove(lua_State* L) {
 }
 
 int step(lua_State* L) {
-  Scene::Impl& scene = editedWorld(L, sol::stack_object(L, 1), "step");
+  Scene::Impl& scene = editedWorld(L, "step");
   sol::stack_object dt(L, 2);
   double h = scene.settings.dt;
   if (!isMissing(dt)) {
@@ -271,33 +161,33 @@ int step(lua_State* L) {
   } catch (const InputError& e) {
     fail(L, "step", e.what());
   }
+  noteJointBreaks(scene);
   return 0;
 }
 
 int kineticEnergy(lua_State* L) {
-  lua_pushnumber(L, selfWorld(L, sol::stack_object(L, 1), "kinetic_energy").world->kineticEnergy());
+  lua_pushnumber(L, selfWorld(L, "kinetic_energy").world->kineticEnergy());
   return 1;
 }
 
 int potentialEnergy(lua_State* L) {
-  lua_pushnumber(L, selfWorld(L, sol::stack_object(L, 1), "potential_energy").world->potentialEnergy());
+  lua_pushnumber(L, selfWorld(L, "potential_energy").world->potentialEnergy());
   return 1;
 }
 
+lua_CFunction ownMethod(std::string_view name) {
+  static const NamedFunction kMethods[] = {
+      {"add_spring", guarded<addSpring>}, {"add_damper", guarded<addDamper>}, {"add_force", guarded<addForce>},
+      {"bodies", guarded<bodies>},        {"find", guarded<find>},            {"remove", guarded<remove>},
+      {"step", guarded<step>},            {"kinetic_energy", guarded<kineticEnergy>},
+      {"potential_energy", guarded<potentialEnergy>}};
+  return lookUp(kMethods, name);
+}
+
 sol::object method(lua_State* L, std::string_view name) {
-  lua_CFunction f = nullptr;
-  if (name == "add_box") f = guarded<addBox>;
-  else if (name == "add_circle") f = guarded<addCircle>;
-  else if (name == "add_polygon") f = guarded<addPolygon>;
-  else if (name == "add_spring") f = guarded<addSpring>;
-  else if (name == "add_damper") f = guarded<addDamper>;
-  else if (name == "add_force") f = guarded<addForce>;
-  else if (name == "bodies") f = guarded<bodies>;
-  else if (name == "find") f = guarded<find>;
-  else if (name == "remove") f = guarded<remove>;
-  else if (name == "step") f = guarded<step>;
-  else if (name == "kinetic_energy") f = guarded<kineticEnergy>;
-  else if (name == "potential_energy") f = guarded<potentialEnergy>;
+  lua_CFunction f = bodyWorldMethod(name);
+  if (!f) f = jointWorldMethod(name);
+  if (!f) f = ownMethod(name);
   if (!f) return sol::make_object(L, sol::lua_nil);
   lua_pushcfunction(L, f);
   return sol::stack::pop<sol::object>(L);
@@ -306,13 +196,11 @@ sol::object method(lua_State* L, std::string_view name) {
 void unknownField(lua_State* L, const std::string& k) {
   std::vector<std::string_view> all = kWorldFields;
   all.insert(all.end(), kWorldMethods.begin(), kWorldMethods.end());
-  const std::string hint = closestName(k, all);
-  fail(L, "world", "has no field '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
+  noSuchField(L, "world", k, all);
 }
 
 sol::object worldIndex(lua_State* L, const LuaWorld& self, const sol::stack_object& key) {
-  if (key.get_type() != sol::type::string) fail(L, "world", "fields are named by strings, got " + describe(key));
-  const std::string k = key.as<std::string>();
+  const std::string k = fieldName(L, "world", key);
   const World& w = liveWorld(L, *self.scene, "world");
   if (k == "gravity") return makeVec(L, w.settings().gravity);
   if (k == "integrator") return sol::make_object(L, std::string(integratorName(w.settings().integrator)));
@@ -330,8 +218,7 @@ sol::object worldIndex(lua_State* L, const LuaWorld& self, const sol::stack_obje
 }
 
 void worldNewIndex(lua_State* L, const LuaWorld& self, const sol::stack_object& key, const sol::stack_object& value) {
-  if (key.get_type() != sol::type::string) fail(L, "world", "fields are named by strings, got " + describe(key));
-  const std::string k = key.as<std::string>();
+  const std::string k = fieldName(L, "world", key);
   const std::string function = "world." + k;
   World& w = liveWorld(L, *self.scene, function);
   if (std::find(kWorldFields.begin(), kWorldFields.end(), k) != kWorldFields.end()) requireIdle(L, *self.scene, function);
@@ -412,8 +299,7 @@ int forceIndex(lua_State* L) {
   } else if (k == "remove") {
     lua_pushcfunction(L, guarded<removeForceHandle>);
   } else {
-    const std::string hint = closestName(k, {"kind", "removed", "remove"});
-    fail(L, self.kind, "has no field '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
+    noSuchField(L, self.kind, k, {"kind", "removed", "remove"});
   }
   return 1;
 }
@@ -424,12 +310,6 @@ int forceNewIndex(lua_State* L) {
 
 int forceToString(lua_State* L) {
   lua_pushstring(L, selfForce(L, "tostring").kind);
-  return 1;
-}
-
-int forceEqual(lua_State* L) {
-  const LuaForceHandle *a = toHandle<LuaForceHandle>(L, 1), *b = toHandle<LuaForceHandle>(L, 2);
-  lua_pushboolean(L, a && b && a->id == b->id && a->scene == b->scene);
   return 1;
 }
 
@@ -456,6 +336,22 @@ int worldToString(lua_State* L) {
 
 }  // namespace
 
+Scene::Impl& selfWorld(lua_State* L, std::string_view function) {
+  const LuaWorld* world = toHandle<LuaWorld>(L, 1);
+  if (!world)
+    fail(L, function, "call it as world:" + std::string(function) + "(...), with a colon; got " + describe(L, 1) +
+                          " as the world");
+  Scene::Impl& scene = *world->scene;
+  liveWorld(L, scene, function);
+  return scene;
+}
+
+Scene::Impl& editedWorld(lua_State* L, std::string_view function) {
+  Scene::Impl& scene = selfWorld(L, function);
+  requireIdle(L, scene, function);
+  return scene;
+}
+
 World& liveWorld(lua_State* L, Scene::Impl& scene, std::string_view function) {
   if (!scene.world) fail(L, function, "the scene is closed");
   return *scene.world;
@@ -472,16 +368,46 @@ size_t hostBytes(const World& world, const Body& body) {
   // memory per circle (RSS of 200 000 circles less that of 100 000, less Lua's own growth).
   constexpr size_t kPerSlot = 560;
   size_t bytes = sizeof(Body) + kPerSlot + body.name.size();
-  for (const ShapeId s : body.shapes)
-    bytes += sizeof(BodyShape) + 2 * sizeof(Vec2) * world.shape(s).geometry.vertices.size();
+  for (const ShapeId s : body.shapes) bytes += shapeHostBytes(world.shape(s));
   return bytes;
+}
+
+size_t shapeHostBytes(const BodyShape& shape) {
+  return sizeof(BodyShape) + 2 * sizeof(Vec2) * shape.geometry.vertices.size();
+}
+
+void chargeJoint(lua_State* L, Scene::Impl& scene, std::string_view function, JointId id) {
+  // The definition, the solver's record and per-joint lists (an estimate of the core's Joint).
+  constexpr size_t kPerJoint = 1024;
+  World& world = *scene.world;
+  const size_t bytes = sizeof(JointDef) + kPerJoint + world.joint(id).name.size();
+  // Gives back the charges of joints that are gone (removed with a body, broken, removed).
+  const auto settle = [&] {
+    std::erase_if(scene.joint_charges, [&](const std::pair<JointId, size_t>& c) {
+      if (world.isValid(c.first)) return false;
+      scene.host->release(c.second);
+      return true;
+    });
+    scene.joint_charges_checked = scene.joint_charges.size();
+  };
+  // Settled in batches (amortised O(1) per joint), and before a charge would fail.
+  if (scene.joint_charges.size() >= 2 * scene.joint_charges_checked + 64 ||
+      scene.host->memoryUsed() + bytes > scene.host->limits().memory_bytes)
+    settle();
+  try {
+    scene.host->charge(L, function, bytes);
+  } catch (...) {
+    world.destroyJoint(id);  // over the memory limit: as if it had not been made
+    throw;
+  }
+  scene.joint_charges.emplace_back(id, bytes);
 }
 
 void registerWorldType(lua_State* L) {
   registerHandleType(L, LuaWorld::kMetatable, guarded<worldIndexMeta>, guarded<worldNewIndexMeta>, guarded<worldToString>,
                      nullptr);
   registerHandleType(L, LuaForceHandle::kMetatable, guarded<forceIndex>, guarded<forceNewIndex>, guarded<forceToString>,
-                     guarded<forceEqual>);
+                     guarded<handlesEqual<LuaForceHandle, &LuaForceHandle::id>>);
 }
 
 }  // namespace rigidlab::lua

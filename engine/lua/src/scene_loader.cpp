@@ -139,7 +139,12 @@ void setUp(Scene::Impl& s) {
   registerBodyType(L);
   registerWorldType(L);
   registerDrawType(L);
+  registerShapeType(L);
+  registerJointType(L);
   s.handles = s.host->lua().create_table();
+  s.user_data = s.host->lua().create_table();
+  s.shape_handles = makeWeakTable(L);
+  s.joint_handles = makeWeakTable(L);
 }
 
 void runMainChunk(Scene::Impl& s, std::string_view source, const std::string& name) {
@@ -249,7 +254,7 @@ Scene::Impl::~Impl() {
   // closes.
   world.reset();
   on_step = check = on_key = on_draw = exact = sol::object();
-  handles = sol::table();
+  handles = user_data = shape_handles = joint_handles = sol::table();
   world_handle = draw_handle = sol::object();
   draw = nullptr;
   host.reset();
@@ -285,6 +290,7 @@ void Scene::step(double dt) {
   } catch (const InputError& e) {
     throw SceneError(impl_->name + ": step: " + e.what());
   }
+  noteJointBreaks(*impl_);
   if (defined(impl_->on_step)) call(*impl_, impl_->on_step, "OnStep", impl_->world_handle, dt);
 }
 

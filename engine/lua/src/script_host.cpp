@@ -403,7 +403,7 @@ void* ScriptHost::allocate(void* ud, void* ptr, size_t old_size, size_t new_size
 
 void ScriptHost::charge(lua_State* L, std::string_view function, size_t bytes) {
   if (used_ + bytes > options_.limits.memory_bytes)
-    fail(L, function, memoryMessage() + "; bodies and their names count against it");
+    fail(L, function, memoryMessage() + "; bodies, shapes, joints and their names count against it");
   used_ += bytes;
 }
 

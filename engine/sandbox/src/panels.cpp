@@ -11,6 +11,8 @@
 #include <cstdio>
 #include <numbers>
 
+#include "panel_inputs.h"
+#include "property_panels.h"
 #include "renderer.h"
 #include "rigidlab/lua/scene_writer.h"
 #include "tools.h"
@@ -21,15 +23,6 @@ namespace {
 
 constexpr float kLeftWidth = 280.0f, kRightWidth = 320.0f, kMargin = 8.0f;
 const ImVec4 kErrorColor(1.0f, 0.45f, 0.4f, 1.0f), kWarnColor(1.0f, 0.8f, 0.3f, 1.0f), kDimColor(0.6f, 0.6f, 0.65f, 1.0f);
-
-bool inputDouble(const char* label, double* v, const char* format = "%.6g", bool read_only = false) {
-  return ImGui::InputScalar(label, ImGuiDataType_Double, v, nullptr, nullptr, format,
-                            read_only ? ImGuiInputTextFlags_ReadOnly : 0);
-}
-bool inputVec(const char* label, Vec2* v, const char* format = "%.6g", bool read_only = false) {
-  return ImGui::InputScalarN(label, ImGuiDataType_Double, v->data(), 2, nullptr, nullptr, format,
-                             read_only ? ImGuiInputTextFlags_ReadOnly : 0);
-}
 
 void sceneSection(Session& s) {
   const lua::SceneSettings& settings = s.scene->settings();
@@ -61,11 +54,23 @@ void sceneSection(Session& s) {
   if (s.undo.canUndo()) ImGui::TextColored(kDimColor, "undo: %s", s.undo.undoLabel().c_str());
 }
 
+void jointToolSection(ToolState& t) {
+  if (ImGui::BeginCombo("kind", jointTypeName(t.joint_kind))) {
+    for (const JointType kind : kToolJoints)
+      if (ImGui::Selectable(jointTypeName(kind), kind == t.joint_kind)) t.joint_kind = kind;
+    ImGui::EndCombo();
+  }
+  if (t.joint_kind == JointType::Prismatic || t.joint_kind == JointType::Wheel)
+    inputDouble("axis [deg]", &t.joint_axis_degrees, "%.4g");
+  if (t.joint_kind == JointType::Distance) ImGui::Checkbox("rope (slack when shorter)", &t.joint_rope);
+  ImGui::Checkbox("bodies collide", &t.joint_collide);
+}
+
 void toolsSection(Session& s) {
   ToolState& t = s.tools;
-  for (const Tool tool : {Tool::Select, Tool::Circle, Tool::Box, Tool::Polygon}) {
+  for (const Tool tool : {Tool::Select, Tool::Circle, Tool::Box, Tool::Polygon, Tool::Capsule, Tool::Joint}) {
     if (ImGui::RadioButton(toolName(tool), t.tool == tool)) selectTool(s, tool);
-    if (tool == Tool::Select || tool == Tool::Box) ImGui::SameLine();  // two per row
+    if (tool == Tool::Select || tool == Tool::Box || tool == Tool::Capsule) ImGui::SameLine();  // two per row
   }
   ImGui::PushItemWidth(120);
   if (t.tool == Tool::Circle) inputDouble("radius [m]", &t.circle_radius);
@@ -73,7 +78,12 @@ void toolsSection(Session& s) {
     inputDouble("width [m]", &t.box_width);
     inputDouble("height [m]", &t.box_height);
   }
-  if (t.tool != Tool::Select) {
+  if (t.tool == Tool::Capsule) {
+    inputDouble("length [m]", &t.capsule_length);
+    inputDouble("radius [m]", &t.capsule_radius);
+  }
+  if (t.tool == Tool::Joint) jointToolSection(t);
+  if (t.tool != Tool::Select && t.tool != Tool::Joint) {
     inputDouble("density [kg/m2]", &t.density);
     inputDouble("restitution", &t.restitution, "%.3g");
     inputDouble("friction", &t.friction, "%.3g");
@@ -83,11 +93,16 @@ void toolsSection(Session& s) {
   t.circle_radius = std::max(t.circle_radius, 0.01);
   t.box_width = std::max(t.box_width, 0.01);
   t.box_height = std::max(t.box_height, 0.01);
+  t.capsule_length = std::max(t.capsule_length, 0.01);
+  t.capsule_radius = std::max(t.capsule_radius, 0.01);
   t.density = std::max(t.density, 1e-6);
   t.restitution = std::clamp(t.restitution, 0.0, 1.0);
   t.friction = std::max(t.friction, 0.0);
   if (t.tool == Tool::Polygon)
     ImGui::TextColored(kDimColor, "%zu point(s); Enter or click the first to close", t.polygon.size());
+  if (t.tool == Tool::Joint)
+    ImGui::TextColored(kDimColor, s.world().isValid(t.joint_body) ? "now click where the joint goes (empty space: the world)"
+                                                                   : "click a body, then where the joint goes");
 }
 
 void worldSection(Session& s) {
@@ -154,6 +169,8 @@ void drawSection(Session& s) {
   ImGui::Checkbox("springs", &d.springs);
   ImGui::SameLine();
   ImGui::Checkbox("forces", &d.forces);
+  ImGui::SameLine();
+  ImGui::Checkbox("joints (F10)", &d.joints);
   ImGui::Checkbox("contacts (F2)", &d.contacts);
   ImGui::SameLine();
   ImGui::Checkbox("normals (F3)", &d.normals);
@@ -300,79 +317,6 @@ void exactWindow(Session& s) {
   ImGui::End();
 }
 
-void bodyWindow(Session& s, PanelState& p) {
-  World& w = s.world();
-  if (!w.isValid(s.selected)) {
-    p.edit_before.reset();
-    return;
-  }
-  // Bottom left, growing upwards, under the controls.
-  const ImGuiIO& io = ImGui::GetIO();
-  ImGui::SetNextWindowPos(ImVec2(kMargin, io.DisplaySize.y - kMargin), ImGuiCond_FirstUseEver, ImVec2(0.0f, 1.0f));
-  ImGui::SetNextWindowSize(ImVec2(kLeftWidth + 40, 0), ImGuiCond_FirstUseEver);
-  ImGui::Begin("Body");
-  const Body& b = w.body(s.selected);
-  const char* kind = b.shapes.size() == 1 ? shapeTypeName(w.shape(b.shapes[0]).geometry.type)
-                     : b.shapes.empty() ? "no shape" : "compound";
-  ImGui::Text("#%u %s   area %.4g m2   I %.4g kg m2", b.uid, kind, b.area, b.inertia);
-  const bool editable = s.paused;
-  if (!editable) ImGui::TextColored(kDimColor, "pause (Space) to edit");
-  const BodyProps current = captureProps(w, s.selected);
-  BodyProps edited = current;
-  bool activated = false, committed = false;
-  const auto track = [&] {
-    activated = activated || ImGui::IsItemActivated();
-    committed = committed || ImGui::IsItemDeactivatedAfterEdit();
-  };
-  ImGui::PushItemWidth(170);
-  ImGui::BeginDisabled(!editable);
-  ImGui::InputText("name", &edited.name);
-  track();
-  bool is_static = edited.type == BodyType::Static;
-  if (ImGui::Checkbox("static", &is_static)) edited.type = is_static ? BodyType::Static : BodyType::Dynamic;
-  track();
-  inputDouble("mass [kg]", &edited.mass);
-  track();
-  inputDouble("restitution", &edited.material.restitution, "%.4g");
-  track();
-  inputDouble("friction", &edited.material.friction, "%.4g");
-  track();
-  inputDouble("static friction", &edited.material.static_friction, "%.4g");
-  track();
-  inputVec("position [m]", &edited.position);
-  track();
-  double degrees = edited.angle * 180.0 / std::numbers::pi;
-  if (inputDouble("angle [deg]", &degrees)) edited.angle = degrees * std::numbers::pi / 180.0;
-  track();
-  inputVec("velocity [m/s]", &edited.velocity);
-  track();
-  inputDouble("angular velocity [rad/s]", &edited.angular_velocity);
-  track();
-  ImGui::EndDisabled();
-  ImGui::PopItemWidth();
-  if (editable) {
-    if (activated && !p.edit_before) {
-      p.edit_before = current;
-      p.edit_body = s.selected;
-    }
-    if (!(edited == current)) {
-      try {
-        applyProps(w, s.selected, edited);
-        s.history.capture(w);
-      } catch (const std::exception& e) {
-        applyProps(w, s.selected, current);  // the last good values stay
-        s.setStatus(std::string("refused: ") + e.what());
-      }
-    }
-    if (committed && p.edit_before && p.edit_body == s.selected) {
-      s.undo.recordModify(s.selected, *p.edit_before, captureProps(w, s.selected), "edit body #" + std::to_string(b.uid));
-      p.edit_before.reset();
-    }
-  }
-  if (ImGui::Button("Delete")) deleteBody(s, s.selected);
-  ImGui::End();
-}
-
 void helpWindow(Session& s) {
   if (!s.show_help) return;
   const ImGuiIO& io = ImGui::GetIO();
@@ -402,7 +346,7 @@ void saveDialog(Session& s) {
   const ImGuiIO& io = ImGui::GetIO();
   ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.3f), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
   if (!ImGui::BeginPopupModal("Save world", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
-  ImGui::TextUnformatted("Save the world (bodies, springs, dampers, settings, camera) as a new scene file:");
+  ImGui::TextUnformatted("Save the world (bodies, shapes, joints, springs, dampers, settings, camera) as a new scene file:");
   ImGui::SetNextItemWidth(520);
   if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
   if (ImGui::InputText("##path", &d.path)) d.confirm_overwrite = false;
@@ -488,6 +432,7 @@ void drawPanels(Session& s, PanelState& p, Renderer& renderer) {
     energyWindow(s);
     exactWindow(s);
     bodyWindow(s, p);
+    jointWindow(s, p);
   }
   browserWindow(s, p);
   helpWindow(s);

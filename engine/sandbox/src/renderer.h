@@ -23,6 +23,8 @@ struct Palette {
   static constexpr Color axes{0.24f, 0.26f, 0.30f, 1.0f};
   static constexpr Color drag{0.3f, 0.95f, 0.45f, 1.0f};
   static constexpr Color preview{1.0f, 0.85f, 0.2f, 0.9f};
+  static constexpr Color piece{1.0f, 0.85f, 0.2f, 0.35f};   // convex pieces of a polygon being drawn
+  static constexpr Color refused{1.0f, 0.35f, 0.3f, 0.9f};  // an outline that crosses itself
 };
 
 class Renderer final : public DebugDraw, public lua::OverlayDraw {

@@ -124,6 +124,7 @@ void drawWorld(Session& s, Renderer& renderer) {
   options.shapes = s.draw.shapes;
   options.springs = s.draw.springs;
   options.forces = s.draw.forces;
+  options.joints = s.draw.joints;
   options.contacts = s.draw.contacts;
   options.normals = s.draw.normals;
   options.impulses = s.draw.impulses;

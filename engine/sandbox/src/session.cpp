@@ -83,7 +83,7 @@ void adoptScene(Session& s, LoadResult r) {
     }
     return;
   }
-  if (s.scene) cancelGesture(s);  // its drag force belongs to the old world
+  if (s.scene) cancelGesture(s);  // its drag joint belongs to the old world
   const bool first = !s.scene_loaded;
   const bool keep_view = r.purpose != LoadPurpose::Open && !first;
   s.scene = std::move(r.scene);
@@ -110,7 +110,9 @@ void adoptScene(Session& s, LoadResult r) {
   s.exact.update(*s.scene);
   s.incidents_seen = 0;
   s.selected = {};
+  s.selected_joint = {};
   s.tools.polygon.clear();
+  s.tools.joint_body = {};
   s.clock.reset();
   s.meter.reset();
   s.watcher.watch(s.scene->sourceFiles());
@@ -268,8 +270,6 @@ void fitCamera(Session& s) {
   if (const auto box = worldBounds(s.world())) s.camera.fit(*box);
 }
 
-namespace {
-
 std::string describe(const World& world, BodyId id) {
   const Body& b = world.body(id);
   const std::string shape = b.shapes.size() == 1 ? shapeTypeName(world.shape(b.shapes[0]).geometry.type)
@@ -277,19 +277,33 @@ std::string describe(const World& world, BodyId id) {
   return b.name.empty() ? shape + " #" + std::to_string(b.uid) : "'" + b.name + "'";
 }
 
-}  // namespace
+std::string describe(const World& world, JointId id) {
+  const JointDef& d = world.joint(id);
+  return std::string(jointTypeName(d.type)) + " joint" + (d.name.empty() ? "" : " '" + d.name + "'");
+}
 
-BodyId addBody(Session& s, const BodyDef& def, const std::string& label) {
+void select(Session& s, BodyId body, JointId joint) {
+  s.selected = body;
+  s.selected_joint = joint;
+}
+
+BodyId addBody(Session& s, const BodyDef& def, const std::string& label) { return addCompound(s, def, {}, label); }
+
+BodyId addCompound(Session& s, const BodyDef& def, const std::vector<ShapeDef>& more, const std::string& label) {
+  World& w = s.world();
+  BodyId id;
   try {
-    const BodyId id = s.world().createBody(def);
-    s.undo.recordCreate(s.world(), id, label);
-    s.selected = id;
-    afterWorldChange(s);
-    return id;
+    id = w.createBody(def);
+    for (const ShapeDef& shape : more) w.createShape(id, shape);
   } catch (const std::exception& e) {
+    if (w.isValid(id)) w.destroyBody(id);  // all or nothing
     s.setStatus("cannot add " + label + ": " + e.what());
     return {};
   }
+  s.undo.recordCreate(w, id, label);
+  select(s, id);
+  afterWorldChange(s);
+  return id;
 }
 
 void deleteBody(Session& s, BodyId id) {
@@ -298,6 +312,28 @@ void deleteBody(Session& s, BodyId id) {
   const std::string label = "delete " + describe(s.world(), id);
   s.undo.destroy(s.world(), id, label);
   if (s.selected == id) s.selected = {};
+  if (!s.world().isValid(s.selected_joint)) s.selected_joint = {};  // it went with the body
+  if (!s.world().isValid(s.tools.joint_body)) s.tools.joint_body = {};
+  afterWorldChange(s);
+}
+
+JointId addJoint(Session& s, const JointDef& def, const std::string& label) {
+  try {
+    const JointId id = s.world().createJoint(def);
+    s.undo.recordCreateJoint(s.world(), id, label);
+    select(s, {}, id);
+    afterWorldChange(s);
+    return id;
+  } catch (const std::exception& e) {
+    s.setStatus("cannot add " + label + ": " + e.what(), 5.0);
+    return {};
+  }
+}
+
+void deleteJoint(Session& s, JointId id) {
+  if (!s.world().isValid(id) || id == s.tools.drag_joint) return;
+  s.undo.destroyJoint(s.world(), id, "delete " + describe(s.world(), id));
+  s.selected_joint = {};
   afterWorldChange(s);
 }
 
@@ -306,7 +342,12 @@ void toggleStatic(Session& s, BodyId id) {
   if (s.tools.body == id) cancelGesture(s);
   const BodyProps before = captureProps(s.world(), id);
   const bool to_static = !s.world().body(id).isStatic();
-  s.world().setType(id, to_static ? BodyType::Static : BodyType::Dynamic);
+  try {
+    s.world().setType(id, to_static ? BodyType::Static : BodyType::Dynamic);
+  } catch (const std::exception& e) {
+    s.setStatus(std::string("cannot: ") + e.what(), 5.0);  // a body of segments cannot be dynamic
+    return;
+  }
   s.undo.recordModify(id, before, captureProps(s.world(), id),
                       std::string(to_static ? "make static " : "make dynamic ") + describe(s.world(), id));
   afterWorldChange(s);
@@ -317,10 +358,10 @@ void undo(Session& s) {
   const std::string label = s.undo.undoLabel();
   try {
     if (s.undo.undo(s.world())) {
-      s.selected = s.undo.lastTouched();
+      select(s, s.undo.lastTouched(), s.undo.lastTouchedJoint());
       s.setStatus("undone: " + label);
     } else if (!label.empty()) {
-      s.setStatus("cannot undo: the body was removed by the scene; history cleared");
+      s.setStatus("cannot undo: the body or joint was removed by the scene; history cleared");
     }
   } catch (const std::exception& e) {
     s.setStatus(std::string("undo failed: ") + e.what());
@@ -333,10 +374,10 @@ void redo(Session& s) {
   const std::string label = s.undo.redoLabel();
   try {
     if (s.undo.redo(s.world())) {
-      s.selected = s.undo.lastTouched();
+      select(s, s.undo.lastTouched(), s.undo.lastTouchedJoint());
       s.setStatus("redone: " + label);
     } else if (!label.empty()) {
-      s.setStatus("cannot redo: the body was removed by the scene; history cleared");
+      s.setStatus("cannot redo: the body or joint was removed by the scene; history cleared");
     }
   } catch (const std::exception& e) {
     s.setStatus(std::string("redo failed: ") + e.what());
@@ -349,7 +390,7 @@ void cancelGesture(Session& s) {
   World& w = s.world();
   switch (t.gesture) {
     case ToolState::Gesture::Drag:
-      if (w.isValid(t.drag_force)) w.removeForce(t.drag_force);
+      if (w.isValid(t.drag_joint)) w.destroyJoint(t.drag_joint);
       break;
     case ToolState::Gesture::Move:
     case ToolState::Gesture::Rotate:
@@ -361,7 +402,7 @@ void cancelGesture(Session& s) {
       break;
   }
   t.gesture = ToolState::Gesture::None;
-  t.drag_force = {};
+  t.drag_joint = {};
   t.body = {};
 }
 
@@ -370,6 +411,7 @@ bool saveWorld(Session& s, const fs::path& path, std::string& message) {
     message = "give a file name";
     return false;
   }
+  cancelGesture(s);  // the drag joint is the mouse's, not the world's
   const fs::path target = comparable(path);
   std::vector<fs::path> protected_files = s.scene->sourceFiles();
   if (!s.file.empty()) protected_files.push_back(s.file);

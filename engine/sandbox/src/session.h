@@ -24,7 +24,7 @@
 namespace rigidlab::sandbox {
 
 struct DrawToggles {
-  bool grid = true, shapes = true, springs = true, forces = true;
+  bool grid = true, shapes = true, springs = true, forces = true, joints = true;
   bool exact = true;  // ghosts of Exact(t)'s positions, for scenes that define it
   bool contacts = false, normals = false, impulses = false, aabbs = false, centers = false, velocities = false;
 };
@@ -43,13 +43,17 @@ struct WorldOverrides {
   bool any() const { return gravity || integrator || iterations || dt || warm_starting || sleeping || solver || substeps; }
 };
 
-enum class Tool { Select, Circle, Box, Polygon };
+enum class Tool { Select, Circle, Box, Polygon, Capsule, Joint };
+// The joints the joint tool makes (joint_tool.cpp).
+inline constexpr JointType kToolJoints[] = {JointType::Revolute, JointType::Weld, JointType::Distance,
+                                            JointType::Prismatic, JointType::Wheel};
 
 // What the mouse is doing (tools.cpp).
 struct ToolState {
   Tool tool = Tool::Select;
   // Sizes and material of bodies made with a click (a drag sets the size instead).
   double circle_radius = 0.5, box_width = 1.0, box_height = 1.0;  // [m]
+  double capsule_length = 1.5, capsule_radius = 0.25;              // [m]: length between the centres
   double density = 1.0;                                           // [kg/m²]
   double restitution = 0.2, friction = 0.6;
   bool make_static = false;
@@ -59,12 +63,20 @@ struct ToolState {
   Vec2 mouse_px = Vec2::Zero();  // last cursor position
   Vec2 press_px = Vec2::Zero();  // where the button went down
   Vec2 press_world = Vec2::Zero();
-  ForceId drag_force;            // Drag: the mouse force (running)
+  JointId drag_joint;            // Drag: the motor joint pulling the body (running; mouse_drag.h)
   BodyId body;                   // Move/Rotate/Drag: the body
   BodyProps before;              // Move/Rotate: for undo
   Vec2 grab_offset = Vec2::Zero();  // Move: body origin − cursor
   double start_angle = 0.0, start_cursor_angle = 0.0;  // Rotate
   std::vector<Vec2> polygon;     // Polygon: the points clicked so far [m]
+
+  // Joint tool: the kind to make and its options, and the first click (joint_tool.h).
+  JointType joint_kind = JointType::Revolute;
+  double joint_axis_degrees = 0.0;  // prismatic and wheel: the axis, from +x
+  bool joint_collide = false;       // collide_connected
+  bool joint_rope = false;          // distance: a rope (max length only) instead of a rod
+  BodyId joint_body;                // the first body clicked; null: none yet
+  Vec2 joint_point = Vec2::Zero();  // where it was clicked [m]
 };
 
 struct SaveDialog {
@@ -99,7 +111,8 @@ struct Session {
   double last_frame_ms = 0.0, last_steps_ms = 0.0;  // wall time of the last frame / its steps
   WorldOverrides overrides;
   WorldOverrides scene_values;  // the scene's own values of the overridable settings (all set)
-  BodyId selected;
+  BodyId selected;         // at most one of these two is set
+  JointId selected_joint;
   ToolState tools;
   UndoHistory undo;
   TransformHistory history;
@@ -163,11 +176,20 @@ std::optional<Aabb> worldBounds(const World& world);
 
 // --- edits (all undoable)
 BodyId addBody(Session& s, const BodyDef& def, const std::string& label);  // BodyId{} if refused (status says why)
-void deleteBody(Session& s, BodyId id);
+// A body of several shapes: def's shape (if any) and then `more`, in body coordinates.
+BodyId addCompound(Session& s, const BodyDef& def, const std::vector<ShapeDef>& more, const std::string& label);
+void deleteBody(Session& s, BodyId id);  // with its joints
+JointId addJoint(Session& s, const JointDef& def, const std::string& label);  // JointId{} if refused
+void deleteJoint(Session& s, JointId id);
+// Selects a body or a joint (the other is deselected); null ids: nothing.
+void select(Session& s, BodyId body, JointId joint = {});
+// "'name'", "polygon #3", "compound body #4"; for joints "revolute joint 'hinge'" or "revolute joint".
+std::string describe(const World& world, BodyId id);
+std::string describe(const World& world, JointId id);
 void toggleStatic(Session& s, BodyId id);
 void undo(Session& s);
 void redo(Session& s);
-// Ends whatever the mouse was doing (drag force removed, move committed) — before a swap, a pause.
+// Ends whatever the mouse was doing (drag joint removed, move committed) — before a swap, a pause.
 void cancelGesture(Session& s);
 
 // Saves the world as a scene file (scene_writer.h). Refuses the open scene and its modules (they

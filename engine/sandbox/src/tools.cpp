@@ -6,8 +6,11 @@
 #include <cmath>
 #include <numbers>
 
+#include "joint_tool.h"
+#include "mouse_drag.h"
+#include "picking.h"
 #include "renderer.h"
-#include "rigidlab/forces.h"
+#include "rigidlab/error.h"
 
 namespace rigidlab::sandbox {
 
@@ -21,6 +24,10 @@ constexpr double kMinSize = 0.05;          // [m] smallest body a drag makes
 constexpr double kPanKeyFraction = 0.1;    // arrow keys pan by this fraction of the view height
 constexpr double kZoomStep = 1.15;         // per wheel notch or +/- key
 constexpr double kRotateKeyRadians = std::numbers::pi / 12.0;  // Q/E: 15°
+constexpr double kPickPixels = 6.0;        // joints' anchors and segments are picked this close
+// The polygon tool previews the convex pieces of the outline being drawn up to this many points
+// (decomposeConcave is cubic in the worst case; past it the pieces show once it is closed).
+constexpr size_t kPreviewPoints = 64;
 
 constexpr Shortcut kShortcuts[] = {
     {"F1", "show or hide this help"},
@@ -30,20 +37,23 @@ constexpr Shortcut kShortcuts[] = {
     {"F5", "reload the scene now"},
     {"Ctrl+Z / Ctrl+Y (Ctrl+Shift+Z)", "undo / redo an edit"},
     {"Ctrl+S", "save the world as a new scene file"},
-    {"1 2 3 4", "tools: select/drag, circle, box, polygon"},
-    {"Left drag (select tool)", "running: pull a body with a capped spring force; paused: move it"},
+    {"1 2 3 4 5 6", "tools: select/drag, circle, box, polygon, capsule, joint"},
+    {"Left click (select tool)", "select a body, or a joint by its anchor"},
+    {"Left drag (select tool)", "running: pull a body (a motor joint, at most 100 times its weight); paused: move it"},
     {"Shift + left drag (paused)", "rotate a body about its centre of mass"},
     {"Q / E (paused)", "rotate the selected body by +15° / -15°"},
-    {"Left click / drag (circle, box)", "add a body of the panel's size / of the dragged size"},
-    {"Left clicks (polygon)", "add points; click the first point or press Enter to close, Backspace to undo a point"},
-    {"Delete / Backspace", "delete the selected body"},
+    {"Left click / drag (circle, box, capsule)", "add a body of the panel's size / of the dragged size (capsule: from end to end)"},
+    {"Left clicks (polygon)", "add points; click the first point or press Enter to close, Backspace to undo a point; a concave outline becomes a body of convex pieces, a crossing one is refused"},
+    {"Left clicks (joint)", "a body, then where the joint goes: on a second body joins the two, on empty space pins to the world (distance: the first click is the first anchor); the kind in the panel"},
+    {"Delete / Backspace", "delete the selected joint, or body (with its joints)"},
     {"T", "toggle the selected body (or the one under the cursor) static / dynamic"},
-    {"Esc", "cancel the gesture, drop the polygon, deselect"},
+    {"Esc", "cancel the gesture, drop the polygon or the joint's first click, deselect"},
     {"Right or middle drag, arrow keys", "pan the camera"},
     {"Wheel, + / -", "zoom about the cursor / the centre"},
     {"F", "fit the scene in the window"},
     {"F2 F3 F4", "draw contact points / normals / impulses"},
     {"F6 F7 F8", "draw bounding boxes / centres of mass / velocities"},
+    {"F10", "draw joints"},
     {"F9", "loop: fixed step / variable step"},
     {"Tab", "show or hide the panels"},
     {"Ctrl+O", "scene browser (scripts/scenes/)"},
@@ -71,12 +81,17 @@ void pressSelect(Session& s, bool shift) {
   ToolState& t = s.tools;
   World& w = s.world();
   const Vec2 p = cursorWorld(s);
-  const auto hit = w.bodyAt(p);
-  if (!hit) {
-    s.selected = {};
+  const double tolerance = s.camera.metres(kPickPixels);
+  if (const auto joint = pickJoint(w, p, tolerance)) {  // anchors are small: they come first
+    select(s, {}, *joint);
     return;
   }
-  s.selected = *hit;
+  const auto hit = pickBody(w, p, tolerance);
+  if (!hit) {
+    select(s, {});
+    return;
+  }
+  select(s, *hit);
   const Body& b = w.body(*hit);
   t.body = *hit;
   if (s.paused) {
@@ -90,10 +105,14 @@ void pressSelect(Session& s, bool shift) {
       t.gesture = Gesture::Move;
       t.grab_offset = b.xf.p - p;
     }
-  } else if (!b.isStatic()) {
-    // Running: pull with a damped spring whose force is capped (forces.h MouseForce).
-    t.gesture = Gesture::Drag;
-    t.drag_force = w.addForce(std::make_unique<MouseForce>(MouseForce::forBody(b, p)), *hit);
+  } else if (b.isDynamic()) {
+    try {
+      t.drag_joint = startDrag(w, *hit, p);
+      t.gesture = Gesture::Drag;
+    } catch (const InputError& e) {
+      s.setStatus(std::string("cannot pull it: ") + e.what());
+      t.body = {};
+    }
   } else {
     t.body = {};
   }
@@ -131,6 +150,17 @@ void releaseCreate(Session& s) {
       def.shape = makeCircle(r);
       def.position = t.press_world;
       addBody(s, def, "add circle");
+    } else if (t.tool == Tool::Capsule) {
+      // A click: a level capsule of the panel's length; a drag: from where it started to the cursor.
+      Vec2 a = t.press_world - Vec2(0.5 * t.capsule_length, 0.0), b = t.press_world + Vec2(0.5 * t.capsule_length, 0.0);
+      if (!click) {
+        a = t.press_world;
+        b = p;
+      }
+      const Vec2 half = 0.5 * (b - a);
+      def.shape = makeCapsule(-half, half, t.capsule_radius);
+      def.position = 0.5 * (a + b);
+      addBody(s, def, "add capsule");
     } else {
       Vec2 size(t.box_width, t.box_height), center = t.press_world;
       if (!click) {
@@ -154,6 +184,11 @@ void pressPolygon(Session& s) {
     return;
   }
   t.polygon.push_back(p);
+}
+
+void deleteSelected(Session& s) {
+  if (s.world().isValid(s.selected_joint)) deleteJoint(s, s.selected_joint);
+  else deleteBody(s, s.selected);
 }
 
 bool handleKey(Session& s, const SDL_KeyboardEvent& key) {
@@ -188,18 +223,20 @@ bool handleKey(Session& s, const SDL_KeyboardEvent& key) {
     case SDLK_2: selectTool(s, Tool::Circle); break;
     case SDLK_3: selectTool(s, Tool::Box); break;
     case SDLK_4: selectTool(s, Tool::Polygon); break;
+    case SDLK_5: selectTool(s, Tool::Capsule); break;
+    case SDLK_6: selectTool(s, Tool::Joint); break;
     case SDLK_q: rotateSelected(s, kRotateKeyRadians); break;
     case SDLK_e: rotateSelected(s, -kRotateKeyRadians); break;
     case SDLK_RETURN:
     case SDLK_KP_ENTER: finishPolygon(s); break;
     case SDLK_BACKSPACE:
       if (t.tool == Tool::Polygon && !t.polygon.empty()) t.polygon.pop_back();
-      else deleteBody(s, s.selected);
+      else deleteSelected(s);
       break;
-    case SDLK_DELETE: deleteBody(s, s.selected); break;
+    case SDLK_DELETE: deleteSelected(s); break;
     case SDLK_t: {
       BodyId target = s.selected;
-      if (!s.world().isValid(target)) target = s.world().bodyAt(cursorWorld(s)).value_or(BodyId{});
+      if (!s.world().isValid(target)) target = pickBody(s.world(), cursorWorld(s), s.camera.metres(kPickPixels)).value_or(BodyId{});
       toggleStatic(s, target);
       break;
     }
@@ -207,7 +244,8 @@ bool handleKey(Session& s, const SDL_KeyboardEvent& key) {
       if (s.show_help) s.show_help = false;
       else if (t.gesture != Gesture::None) cancelGesture(s);
       else if (!t.polygon.empty()) t.polygon.clear();
-      else s.selected = {};
+      else if (!t.joint_body.isNull()) t.joint_body = {};
+      else select(s, {});
       break;
     case SDLK_LEFT: s.camera.pan(Vec2(pan, 0)); break;
     case SDLK_RIGHT: s.camera.pan(Vec2(-pan, 0)); break;
@@ -225,6 +263,7 @@ bool handleKey(Session& s, const SDL_KeyboardEvent& key) {
     case SDLK_F6: s.draw.aabbs = !s.draw.aabbs; break;
     case SDLK_F7: s.draw.centers = !s.draw.centers; break;
     case SDLK_F8: s.draw.velocities = !s.draw.velocities; break;
+    case SDLK_F10: s.draw.joints = !s.draw.joints; break;
     case SDLK_F9:
       s.loop.mode = s.loop.mode == LoopMode::Fixed ? LoopMode::Variable : LoopMode::Fixed;
       s.clock.reset();
@@ -257,6 +296,8 @@ const char* toolName(Tool tool) {
     case Tool::Circle: return "circle";
     case Tool::Box: return "box";
     case Tool::Polygon: return "polygon";
+    case Tool::Capsule: return "capsule";
+    case Tool::Joint: return "joint";
   }
   return "";
 }
@@ -264,6 +305,7 @@ const char* toolName(Tool tool) {
 void selectTool(Session& s, Tool tool) {
   cancelGesture(s);
   s.tools.polygon.clear();
+  s.tools.joint_body = {};
   s.tools.tool = tool;
 }
 
@@ -291,15 +333,34 @@ void finishPolygon(Session& s) {
   mean /= static_cast<double>(t.polygon.size());
   std::vector<Vec2> local;
   for (const Vec2& p : t.polygon) local.push_back(p - mean);
-  BodyDef def = newBodyDef(t);
+  // A concave outline is the body the user drew only as a compound of convex pieces, never as
+  // its hull: split it, and refuse an outline that crosses itself.
+  std::vector<std::vector<Vec2>> pieces;
   try {
-    def.shape = makePolygon(local);
+    pieces = decomposeConcave(local);
   } catch (const std::exception& e) {
     s.setStatus(std::string("cannot make that polygon: ") + e.what(), 5.0);
     return;  // keep the points: Backspace can fix the outline
   }
+  BodyDef def = newBodyDef(t);
   def.position = mean;
-  if (addBody(s, def, "add polygon").isNull()) return;
+  std::vector<ShapeDef> more;
+  try {
+    def.shape = makePolygon(pieces[0]);
+    for (size_t i = 1; i < pieces.size(); ++i) {
+      ShapeDef piece;
+      piece.shape = makePolygon(pieces[i]);
+      piece.density = def.density;
+      piece.material = {def.restitution, def.friction, def.friction};
+      more.push_back(piece);
+    }
+  } catch (const std::exception& e) {
+    s.setStatus(std::string("cannot make that polygon: ") + e.what(), 5.0);
+    return;
+  }
+  const std::string label = pieces.size() == 1 ? "add polygon" : "add concave polygon (" + std::to_string(pieces.size()) + " convex pieces)";
+  if (addCompound(s, def, more, label).isNull()) return;
+  if (pieces.size() > 1) s.setStatus(label);
   t.polygon.clear();
 }
 
@@ -336,8 +397,10 @@ void handleEvent(Session& s, const SDL_Event& e, InputCapture capture) {
       switch (t.tool) {
         case Tool::Select: pressSelect(s, SDL_GetModState() & KMOD_SHIFT); break;
         case Tool::Circle:
-        case Tool::Box: t.gesture = Gesture::Create; break;
+        case Tool::Box:
+        case Tool::Capsule: t.gesture = Gesture::Create; break;
         case Tool::Polygon: pressPolygon(s); break;
+        case Tool::Joint: pressJointTool(s, cursorWorld(s)); break;
       }
       return;
     }
@@ -363,29 +426,36 @@ void updateTools(Session& s) {
   ToolState& t = s.tools;
   if (t.gesture != Gesture::Drag) return;
   World& w = s.world();
-  if (!w.isValid(t.drag_force)) {  // the body was removed (by a script, an undo, a reload)
+  if (!w.isValid(t.drag_joint)) {  // the body was removed (by a script, an undo, a reload)
     t.gesture = Gesture::None;
-    t.drag_force = {};
+    t.drag_joint = {};
     return;
   }
-  if (auto* drag = dynamic_cast<MouseForce*>(&w.force(t.drag_force))) drag->setTarget(cursorWorld(s));
+  moveDrag(w, t.drag_joint, cursorWorld(s));
 }
 
 void drawToolOverlay(const Session& s, Renderer& r) {
   const ToolState& t = s.tools;
   const World& w = s.world();
   const Vec2 p = cursorWorld(s);
-  if (t.gesture == Gesture::Drag && w.isValid(t.drag_force)) {
-    // The pull as a spring from the grabbed point to the cursor, over the core's straight line.
-    if (const auto* drag = dynamic_cast<const MouseForce*>(&w.force(t.drag_force))) {
-      const Vec2 grabbed = w.body(drag->def().body).xf.apply(drag->def().local_point);
-      r.drawSpring(grabbed, drag->def().target, s.camera.metres(10.0), Palette::drag);
-    }
+  if (t.gesture == Gesture::Drag && w.isValid(t.drag_joint)) {
+    // The pull as a spring from the grabbed point to the cursor, over the joint's straight line.
+    const DragLine line = dragLine(w, t.drag_joint);
+    r.drawSpring(line.grabbed, line.target, s.camera.metres(10.0), Palette::drag);
+  }
+  if (w.isValid(s.selected_joint)) {  // rings round the selected joint's anchors
+    const JointState js = w.jointState(s.selected_joint);
+    for (const Vec2& q : {js.world_anchor_a, js.world_anchor_b}) r.drawCircleOutline(q, s.camera.metres(9.0), Palette::preview);
   }
   if (t.gesture == Gesture::Create) {
     const bool click = (t.mouse_px - t.press_px).norm() < kClickPixels;
+    const Color none{0, 0, 0, 0};
     if (t.tool == Tool::Circle) {
       r.drawCircleOutline(t.press_world, click ? t.circle_radius : (p - t.press_world).norm(), Palette::preview);
+    } else if (t.tool == Tool::Capsule) {
+      const Vec2 half(0.5 * t.capsule_length, 0.0);
+      if (click) r.drawCapsule(t.press_world - half, t.press_world + half, t.capsule_radius, none, Palette::preview);
+      else r.drawCapsule(t.press_world, p, t.capsule_radius, none, Palette::preview);
     } else if (!click) {
       const Vec2 a = t.press_world, c = p;
       const Vec2 box[4] = {a, Vec2(c.x(), a.y()), c, Vec2(a.x(), c.y())};
@@ -395,9 +465,19 @@ void drawToolOverlay(const Session& s, Renderer& r) {
   if (t.tool == Tool::Polygon && !t.polygon.empty()) {
     std::vector<Vec2> points = t.polygon;
     points.push_back(p);
-    r.drawPolyline(points, false, Palette::preview);
+    // The convex pieces the outline would be made of, or red if it crosses itself.
+    bool crossing = false;
+    if (points.size() >= 3 && points.size() <= kPreviewPoints) {
+      try {
+        for (const auto& piece : decomposeConcave(points)) r.drawPolyline(piece, true, Palette::piece);
+      } catch (const std::exception&) {
+        crossing = true;
+      }
+    }
+    r.drawPolyline(points, false, crossing ? Palette::refused : Palette::preview);
     for (const Vec2& q : t.polygon) r.drawPoint(q, 6.0f, Palette::preview);
   }
+  if (t.tool == Tool::Joint) drawJointToolOverlay(s, r, p);
 }
 
 }  // namespace rigidlab::sandbox

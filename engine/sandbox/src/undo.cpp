@@ -5,28 +5,91 @@
 
 namespace rigidlab::sandbox {
 
+bool operator==(const ShapeProps& a, const ShapeProps& b) {
+  return a.density == b.density && a.material.restitution == b.material.restitution &&
+         a.material.friction == b.material.friction && a.material.static_friction == b.material.static_friction &&
+         a.filter == b.filter && a.sensor == b.sensor;
+}
+
 bool operator==(const BodyProps& a, const BodyProps& b) {
   return a.type == b.type && a.position == b.position && a.angle == b.angle && a.velocity == b.velocity &&
-         a.angular_velocity == b.angular_velocity && a.mass == b.mass &&
-         a.material.restitution == b.material.restitution && a.material.friction == b.material.friction &&
-         a.material.static_friction == b.material.static_friction && a.name == b.name;
+         a.angular_velocity == b.angular_velocity && a.mass == b.mass && a.linear_damping == b.linear_damping &&
+         a.angular_damping == b.angular_damping && a.gravity_scale == b.gravity_scale &&
+         a.fixed_rotation == b.fixed_rotation && a.bullet == b.bullet && a.enabled == b.enabled &&
+         a.shapes == b.shapes && a.name == b.name;
 }
 
 BodyProps captureProps(const World& world, BodyId id) {
   const Body& b = world.body(id);
-  const Material m = b.shapes.empty() ? Material{} : world.shape(b.shapes.front()).material;
-  return {b.type, b.xf.p, b.angle, b.velocity, b.angular_velocity, b.mass, m, b.name};
+  BodyProps p;
+  p.type = b.type;
+  p.position = b.xf.p;
+  p.angle = b.angle;
+  p.velocity = b.velocity;
+  p.angular_velocity = b.angular_velocity;
+  p.mass = b.mass;
+  p.linear_damping = b.linear_damping;
+  p.angular_damping = b.angular_damping;
+  p.gravity_scale = b.gravity_scale;
+  p.fixed_rotation = b.fixed_rotation;
+  p.bullet = b.bullet;
+  p.enabled = b.enabled;
+  for (const ShapeId sid : b.shapes) {
+    const BodyShape& s = world.shape(sid);
+    p.shapes.push_back({s.density, s.material, s.filter, s.sensor});
+  }
+  p.name = b.name;
+  return p;
 }
 
 void applyProps(World& world, BodyId id, const BodyProps& p) {
   // Type first: switching to static zeroes the velocity, switching back must not lose the new one.
-  world.setType(id, p.type);
-  world.setMass(id, p.mass);
-  world.setMaterial(id, p.material);
+  // Shapes and mass before the velocity: they move the centre of mass, which changes the velocity
+  // of a turning body. Fixed rotation before the angular velocity: turning it on stops the body.
+  if (world.body(id).type != p.type) world.setType(id, p.type);
+  const std::vector<ShapeId> shapes = world.body(id).shapes;
+  bool densities_changed = false;
+  for (size_t i = 0; i < shapes.size() && i < p.shapes.size(); ++i) {
+    const ShapeProps& want = p.shapes[i];
+    const BodyShape& s = world.shape(shapes[i]);
+    if (s.density != want.density && hasArea(s.geometry.type)) {
+      world.setShapeDensity(shapes[i], want.density);
+      densities_changed = true;
+    }
+    const Material& m = s.material;
+    if (m.restitution != want.material.restitution || m.friction != want.material.friction ||
+        m.static_friction != want.material.static_friction)
+      world.setShapeMaterial(shapes[i], want.material);
+    if (!(s.filter == want.filter)) world.setShapeFilter(shapes[i], want.filter);
+    if (s.sensor != want.sensor) world.setShapeSensor(shapes[i], want.sensor);
+  }
+  if (!densities_changed && world.body(id).mass != p.mass) world.setMass(id, p.mass);
   world.setTransform(id, p.position, p.angle);
+  if (world.body(id).fixed_rotation != p.fixed_rotation) world.setFixedRotation(id, p.fixed_rotation);
   world.setVelocity(id, p.velocity);
   world.setAngularVelocity(id, p.angular_velocity);
+  world.setLinearDamping(id, p.linear_damping);
+  world.setAngularDamping(id, p.angular_damping);
+  world.setGravityScale(id, p.gravity_scale);
+  world.setBullet(id, p.bullet);
+  if (world.body(id).enabled != p.enabled) world.setEnabled(id, p.enabled);
   world.setName(id, p.name);
+}
+
+bool sameTunables(const JointDef& a, const JointDef& b) {
+  return a.collide_connected == b.collide_connected && a.break_force == b.break_force &&
+         a.break_torque == b.break_torque && a.name == b.name && a.enable_limit == b.enable_limit &&
+         a.lower == b.lower && a.upper == b.upper && a.enable_motor == b.enable_motor &&
+         a.motor_speed == b.motor_speed && a.max_motor_torque == b.max_motor_torque &&
+         a.max_motor_force == b.max_motor_force && a.enable_spring == b.enable_spring &&
+         a.spring_hertz == b.spring_hertz && a.spring_damping == b.spring_damping && a.min_length == b.min_length &&
+         a.max_length == b.max_length && a.max_spring_force == b.max_spring_force &&
+         a.linear_hertz == b.linear_hertz && a.linear_damping == b.linear_damping &&
+         a.angular_hertz == b.angular_hertz && a.angular_damping == b.angular_damping &&
+         a.motor_hertz == b.motor_hertz && a.motor_damping == b.motor_damping &&
+         a.linear_offset == b.linear_offset && a.angular_offset == b.angular_offset &&
+         a.linear_velocity == b.linear_velocity && a.angular_velocity == b.angular_velocity &&
+         a.max_force == b.max_force && a.max_torque == b.max_torque;
 }
 
 UndoHistory::Ref UndoHistory::refFor(BodyId id) {
@@ -36,8 +99,43 @@ UndoHistory::Ref UndoHistory::refFor(BodyId id) {
   return refs_.size() - 1;
 }
 
+UndoHistory::Ref UndoHistory::jointRefFor(JointId id) {
+  const auto it = std::find(joint_refs_.begin(), joint_refs_.end(), id);
+  if (it != joint_refs_.end()) return static_cast<Ref>(it - joint_refs_.begin());
+  joint_refs_.push_back(id);
+  return joint_refs_.size() - 1;
+}
+
 bool UndoHistory::live(const World& world, Ref ref) const {
   return ref < refs_.size() && world.isValid(refs_[ref]);
+}
+
+bool UndoHistory::liveJoint(const World& world, Ref ref) const {
+  return ref < joint_refs_.size() && world.isValid(joint_refs_[ref]);
+}
+
+UndoHistory::JointSnapshot UndoHistory::jointSnapshotOf(const World& world, JointId id) {
+  JointSnapshot j;
+  j.ref = jointRefFor(id);
+  j.def = world.joint(id);
+  if (j.def.type == JointType::Gear) {
+    j.joint_a = jointRefFor(j.def.joint_a);
+    j.joint_b = jointRefFor(j.def.joint_b);
+  } else {
+    j.frames = lua::jointFrames(world, id);
+    if (!j.def.a.isNull()) j.a = refFor(j.def.a);
+    if (!j.def.b.isNull()) j.b = refFor(j.def.b);
+  }
+  return j;
+}
+
+std::vector<UndoHistory::JointSnapshot> UndoHistory::jointWithGears(const World& world, JointId id) {
+  std::vector<JointSnapshot> out{jointSnapshotOf(world, id)};
+  for (const JointId g : world.jointIds()) {
+    const JointDef& d = world.joint(g);
+    if (d.type == JointType::Gear && (d.joint_a == id || d.joint_b == id)) out.push_back(jointSnapshotOf(world, g));
+  }
+  return out;
 }
 
 UndoHistory::Snapshot UndoHistory::snapshotOf(const World& world, BodyId id) {
@@ -86,7 +184,35 @@ UndoHistory::Snapshot UndoHistory::snapshotOf(const World& world, BodyId id) {
     }
     s.forces.push_back(f);
   }
+  std::vector<JointId> joints = world.jointsOf(id);
+  std::stable_partition(joints.begin(), joints.end(), [&](JointId j) { return world.joint(j).type != JointType::Gear; });
+  for (const JointId j : joints) s.joints.push_back(jointSnapshotOf(world, j));
   return s;
+}
+
+void UndoHistory::restoreJoints(World& world, const std::vector<JointSnapshot>& joints, BodyId moved) {
+  const auto body = [&](const std::optional<Ref>& r, bool& ok) {
+    if (!r) return BodyId{};
+    ok = ok && live(world, *r);
+    return ok ? refs_[*r] : BodyId{};
+  };
+  for (const JointSnapshot& j : joints) {
+    JointDef def = j.def;
+    bool ok = true;
+    if (def.type == JointType::Gear) {
+      ok = liveJoint(world, *j.joint_a) && liveJoint(world, *j.joint_b);
+      if (!ok) continue;
+      def.joint_a = joint_refs_[*j.joint_a];
+      def.joint_b = joint_refs_[*j.joint_b];
+      def.a = def.b = {};
+      joint_refs_[j.ref] = world.createJoint(def);
+      continue;
+    }
+    def.a = body(j.a, ok);
+    def.b = body(j.b, ok);
+    if (!ok) continue;  // its other body is deleted too
+    joint_refs_[j.ref] = lua::buildJoint(world, lua::jointBuild(world, def, j.frames, moved));
+  }
 }
 
 BodyId UndoHistory::restore(World& world, Ref ref, const Snapshot& s) {
@@ -112,6 +238,7 @@ BodyId UndoHistory::restore(World& world, Ref ref, const Snapshot& s) {
       world.addDamper(def, f.time_left);
     }
   }
+  restoreJoints(world, s.joints, id);
   return id;
 }
 
@@ -122,78 +249,121 @@ void UndoHistory::push(Edit edit) {
 }
 
 void UndoHistory::recordCreate(const World& world, BodyId id, std::string label) {
-  Edit e{Kind::Create, refFor(id), std::move(label), snapshotOf(world, id), {}, {}};
+  Edit e{Kind::Create, refFor(id), std::move(label), snapshotOf(world, id), {}, {}, {}, {}, {}};
   last_touched_ = id;
+  last_joint_ = {};
   push(std::move(e));
 }
 
 void UndoHistory::destroy(World& world, BodyId id, std::string label) {
-  Edit e{Kind::Destroy, refFor(id), std::move(label), snapshotOf(world, id), {}, {}};
+  Edit e{Kind::Destroy, refFor(id), std::move(label), snapshotOf(world, id), {}, {}, {}, {}, {}};
   if (e.snapshot.lost_forces > 0)
     e.label += " (" + std::to_string(e.snapshot.lost_forces) + " script force(s) cannot come back)";
   world.destroyBody(id);
   last_touched_ = {};
+  last_joint_ = {};
   push(std::move(e));
 }
 
 void UndoHistory::recordModify(BodyId id, const BodyProps& before, const BodyProps& after, std::string label) {
   if (before == after) return;
-  Edit e{Kind::Modify, refFor(id), std::move(label), {}, before, after};
+  Edit e{Kind::Modify, refFor(id), std::move(label), {}, before, after, {}, {}, {}};
   last_touched_ = id;
+  last_joint_ = {};
   push(std::move(e));
+}
+
+void UndoHistory::recordCreateJoint(const World& world, JointId id, std::string label) {
+  Edit e{Kind::CreateJoint, jointRefFor(id), std::move(label), {}, {}, {}, jointWithGears(world, id), {}, {}};
+  last_touched_ = {};
+  last_joint_ = id;
+  push(std::move(e));
+}
+
+void UndoHistory::destroyJoint(World& world, JointId id, std::string label) {
+  Edit e{Kind::DestroyJoint, jointRefFor(id), std::move(label), {}, {}, {}, jointWithGears(world, id), {}, {}};
+  world.destroyJoint(id);  // and the gears on it
+  last_touched_ = {};
+  last_joint_ = {};
+  push(std::move(e));
+}
+
+void UndoHistory::recordModifyJoint(JointId id, const JointDef& before, const JointDef& after, std::string label) {
+  if (sameTunables(before, after)) return;
+  Edit e{Kind::ModifyJoint, jointRefFor(id), std::move(label), {}, {}, {}, {}, before, after};
+  last_touched_ = {};
+  last_joint_ = id;
+  push(std::move(e));
+}
+
+// Undoes (or redoes) one edit. A create undone and a delete redone remove the thing again, taking
+// a fresh snapshot so that the next step brings it back as it is now.
+bool UndoHistory::applyEdit(World& world, Edit& e, bool undoing) {
+  const bool joint = e.kind == Kind::CreateJoint || e.kind == Kind::DestroyJoint || e.kind == Kind::ModifyJoint;
+  const bool removes = (e.kind == Kind::Create || e.kind == Kind::CreateJoint) == undoing &&
+                       e.kind != Kind::Modify && e.kind != Kind::ModifyJoint;
+  const bool modifies = e.kind == Kind::Modify || e.kind == Kind::ModifyJoint;
+  const bool needs_live = removes || modifies;
+  if (needs_live != (joint ? liveJoint(world, e.ref) : live(world, e.ref))) {
+    clear();  // the body or joint was removed (or recreated) behind our back
+    return false;
+  }
+  last_touched_ = {};
+  last_joint_ = {};
+  switch (e.kind) {
+    case Kind::Create:
+    case Kind::Destroy:
+      if (removes) {
+        e.snapshot = snapshotOf(world, refs_[e.ref]);
+        world.destroyBody(refs_[e.ref]);
+      } else {
+        last_touched_ = restore(world, e.ref, e.snapshot);
+      }
+      break;
+    case Kind::CreateJoint:
+    case Kind::DestroyJoint:
+      if (removes) {
+        e.joints = jointWithGears(world, joint_refs_[e.ref]);
+        world.destroyJoint(joint_refs_[e.ref]);
+      } else {
+        const JointSnapshot& j = e.joints.front();
+        const bool bodies = (!j.a || live(world, *j.a)) && (!j.b || live(world, *j.b)) &&
+                            (!j.joint_a || liveJoint(world, *j.joint_a)) && (!j.joint_b || liveJoint(world, *j.joint_b));
+        if (!bodies) {
+          clear();
+          return false;
+        }
+        restoreJoints(world, e.joints, {});
+        last_joint_ = joint_refs_[e.ref];
+      }
+      break;
+    case Kind::Modify:
+      applyProps(world, refs_[e.ref], undoing ? e.before : e.after);
+      last_touched_ = refs_[e.ref];
+      break;
+    case Kind::ModifyJoint:
+      world.updateJoint(joint_refs_[e.ref], undoing ? e.joint_before : e.joint_after);
+      last_joint_ = joint_refs_[e.ref];
+      break;
+  }
+  return true;
 }
 
 bool UndoHistory::undo(World& world) {
   if (done_.empty()) return false;
-  Edit& e = done_.back();
-  const bool needs_live = e.kind != Kind::Destroy;
-  if (needs_live != live(world, e.ref)) {  // the body was removed (or recreated) behind our back
-    clear();
-    return false;
-  }
-  switch (e.kind) {
-    case Kind::Create:
-      e.snapshot = snapshotOf(world, refs_[e.ref]);  // redo brings it back as it is now
-      world.destroyBody(refs_[e.ref]);
-      last_touched_ = {};
-      break;
-    case Kind::Destroy:
-      last_touched_ = restore(world, e.ref, e.snapshot);
-      break;
-    case Kind::Modify:
-      applyProps(world, refs_[e.ref], e.before);
-      last_touched_ = refs_[e.ref];
-      break;
-  }
-  undone_.push_back(std::move(e));
+  Edit e = std::move(done_.back());
   done_.pop_back();
+  if (!applyEdit(world, e, true)) return false;
+  undone_.push_back(std::move(e));
   return true;
 }
 
 bool UndoHistory::redo(World& world) {
   if (undone_.empty()) return false;
-  Edit& e = undone_.back();
-  const bool needs_live = e.kind != Kind::Create;
-  if (needs_live != live(world, e.ref)) {
-    clear();
-    return false;
-  }
-  switch (e.kind) {
-    case Kind::Create:
-      last_touched_ = restore(world, e.ref, e.snapshot);
-      break;
-    case Kind::Destroy:
-      e.snapshot = snapshotOf(world, refs_[e.ref]);
-      world.destroyBody(refs_[e.ref]);
-      last_touched_ = {};
-      break;
-    case Kind::Modify:
-      applyProps(world, refs_[e.ref], e.after);
-      last_touched_ = refs_[e.ref];
-      break;
-  }
-  done_.push_back(std::move(e));
+  Edit e = std::move(undone_.back());
   undone_.pop_back();
+  if (!applyEdit(world, e, false)) return false;
+  done_.push_back(std::move(e));
   return true;
 }
 
@@ -211,7 +381,9 @@ void UndoHistory::clear() {
   done_.clear();
   undone_.clear();
   refs_.clear();
+  joint_refs_.clear();
   last_touched_ = {};
+  last_joint_ = {};
 }
 
 }  // namespace rigidlab::sandbox

@@ -58,6 +58,10 @@ struct BodyDef {
   // A disabled body is out of the simulation (no contacts, no motion, no forces) but keeps its id,
   // shapes and state, and comes back where it was when enabled again.
   bool enabled = true;
+  // false: created asleep (a dynamic body with zero velocity, in a world that sleeps): it costs
+  // nothing until something touches, pushes or edits it, like a body that fell asleep (a pile
+  // built at rest, debris waiting to be hit).
+  bool awake = true;
   std::string name;                            // optional, for lookups and messages
 };
 

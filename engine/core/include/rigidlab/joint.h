@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "rigidlab/body.h"
@@ -53,12 +54,17 @@ struct JointDef {
   double break_torque = std::numeric_limits<double>::infinity();  // [N·m]
   std::string name;
 
-  // Limits: revolute angle (b's angle relative to a, from its value at creation) [rad]; prismatic
+  // Revolute, prismatic, weld, wheel: b's angle relative to a that counts as angle 0 (the limits,
+  // the revolute spring's rest angle, the weld's glued angle) [rad]; default: the angle at creation.
+  std::optional<double> reference_angle;
+
+  // Limits: revolute angle (b's angle relative to a, from reference_angle) [rad]; prismatic
   // and wheel translation along the axis [m]; lower ≤ upper.
   bool enable_limit = false;
   double lower = 0.0, upper = 0.0;
   // Motor: revolute and wheel turn b relative to a at motor_speed [rad/s] with at most
   // max_motor_torque [N·m]; prismatic slides at motor_speed [m/s] with at most max_motor_force [N].
+  // Bounds here and below may be infinite (unlimited).
   bool enable_motor = false;
   double motor_speed = 0.0, max_motor_torque = 0.0, max_motor_force = 0.0;
   // Spring: revolute (towards the angle at creation), prismatic (towards translation 0), wheel
@@ -105,6 +111,7 @@ struct JointState {
   Vec2 reaction_force = Vec2::Zero();  // on b, of the last step [N]
   double reaction_torque = 0.0;        // on b, of the last step [N·m]
   Vec2 world_anchor_a = Vec2::Zero(), world_anchor_b = Vec2::Zero();
+  Vec2 axis = Vec2(1.0, 0.0);  // prismatic, wheel: the axis now (it turns with a), unit, world
   bool broken = false;       // exceeded break_force or break_torque (the joint is removed)
 };
 

@@ -212,6 +212,9 @@ struct StepStats {
 
 struct DrawOptions {
   bool shapes = true, springs = true, forces = true;
+  // Joints: anchors, the lines from the bodies' centres to them, prismatic and wheel axes,
+  // revolute and axis limits, distance joints as a line, rope or spring, pulley ropes.
+  bool joints = true;
   bool contacts = false, normals = false, impulses = false, aabbs = false, centers = false, velocities = false;
   BodyId selected;
   // If not empty: the transform to draw for each body slot (indexed by BodyId::index), e.g.

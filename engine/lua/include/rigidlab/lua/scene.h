@@ -1,6 +1,7 @@
 // A Lua scene: a Lua 5.4 file that defines PopulateWorld(world) and optional hooks, run in its own
 // sandboxed Lua state. The public Lua API (names, fields, errors) is documented in README.md
-// ("Writing scenes") and in scripts/rigidlab.d.lua for editors.
+// ("Writing scenes"), docs/lua-api.md (bodies, shapes, joints, the world) and in
+// scripts/meta/rigidlab.lua for editors.
 //
 //   auto scene = rigidlab::lua::Scene::loadFile("scripts/scenes/pyramid.lua");
 //   for (int i = 0; i < 600; ++i) scene->step();   // world step + OnStep hook

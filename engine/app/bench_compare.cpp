@@ -1,0 +1,191 @@
+// rigidlab against Box2D 2.4.1, Chipmunk 7 and Box2D v3 on the same scenes (bench_compare.h).
+#include "bench_compare.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <map>
+
+#include "bench_run.h"
+#include "cli.h"
+#include "commands.h"
+
+namespace rigidlab::app {
+namespace {
+
+// Key "pyramid/40" of a result line.
+std::string key(const JsonValue& r) {
+  return r.str("scene").value_or("?") + "/" + std::to_string(static_cast<long>(r.num("n").value_or(0)));
+}
+
+std::string stability(const JsonValue& r) {
+  const JsonValue* m = r.get("metrics");
+  if (!m) return "";
+  const std::string scene = r.str("scene").value_or("");
+  const auto b = [&](const char* k) {
+    const JsonValue* v = m->get(k);
+    return v && v->type == JsonValue::Type::Bool && v->boolean;
+  };
+  char buf[128] = "";
+  if (scene == "pyramid") {
+    std::snprintf(buf, sizeof buf, "%s, disp %.3f", b("top_on_top") ? "top on top" : "TOP FELL", m->num("max_disp_m").value_or(NAN));
+  } else if (scene == "stack") {
+    std::snprintf(buf, sizeof buf, "%s, disp %.3f", b("toppled") ? "TOPPLED" : "stands", m->num("max_disp_m").value_or(NAN));
+  } else if (scene == "rain") {
+    std::snprintf(buf, sizeof buf, "overlap max %.4f mean %.4f", m->num("max_overlap_m").value_or(NAN),
+                  m->num("mean_overlap_m").value_or(NAN));
+  } else if (scene == "massratio") {
+    std::snprintf(buf, sizeof buf, "%s, pen %.4f", b("collapsed") ? "COLLAPSED" : "holds",
+                  m->num("max_box_box_penetration_m").value_or(NAN));
+  } else if (scene == "bullet") {
+    std::snprintf(buf, sizeof buf, "%s", b("passed_through") ? "PASSES THROUGH" : "stops");
+  }
+  return buf;
+}
+
+}  // namespace
+
+int comparePeers(const std::vector<JsonValue>& ours, const std::filesystem::path& peers) {
+  const std::filesystem::path script = peers / "run.sh";
+  if (!std::filesystem::exists(script)) {
+    std::fprintf(stderr, "bench: no peer benchmark at %s (use --peers DIR)\n", script.c_str());
+    return kExitUsage;
+  }
+  std::fprintf(stderr, "bench: running the peers (%s, about 3 minutes) ...\n", script.c_str());
+  const std::string command = "'" + script.string() + "' /tmp/rigidlab-peers 2>/dev/null";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) {
+    std::fprintf(stderr, "bench: cannot run %s\n", script.c_str());
+    return kExitSceneError;
+  }
+  std::map<std::string, std::map<std::string, JsonValue>> peer;  // key → engine → line
+  char buf[1 << 16];
+  while (std::fgets(buf, sizeof buf, pipe)) {
+    if (const auto v = parseJson(std::string(buf, std::strlen(buf) - (std::strchr(buf, '\n') ? 1 : 0))))
+      peer[key(*v)][v->str("engine").value_or("?")] = *v;
+  }
+  pclose(pipe);
+  std::printf("\n%-16s %10s %10s %10s %9s %9s   %-28s %-28s %-28s\n", "scene", "rigidlab", "Box2D 2.4", "Chipmunk",
+              "/Box2D", "/Chipmunk", "rigidlab", "Box2D 2.4", "Chipmunk");
+  for (const JsonValue& r : ours) {
+    const std::string k = key(r);
+    if (!peer.count(k)) continue;
+    const auto& p = peer[k];
+    const double ms = r.num("ms_median").value_or(NAN);
+    const auto peerMs = [&](const char* e) { return p.count(e) ? p.at(e).num("ms_median").value_or(NAN) : NAN; };
+    const auto peerStab = [&](const char* e) { return p.count(e) ? stability(p.at(e)) : std::string(); };
+    std::printf("%-16s %8.3fms %8.3fms %8.3fms %8.2fx %8.2fx   %-28s %-28s %-28s\n", k.c_str(), ms, peerMs("box2d"),
+                peerMs("chipmunk"), ms / peerMs("box2d"), ms / peerMs("chipmunk"), stability(r).c_str(),
+                peerStab("box2d").c_str(), peerStab("chipmunk").c_str());
+  }
+  return kExitOk;
+}
+
+
+namespace {
+
+// The peer program's arguments for one of rigidlab's scenes, or "" if it has no such scene.
+std::string v3Arguments(const BenchScene& s) {
+  const std::string steps = " --steps=" + std::to_string(s.steps);
+  if (isSuiteScene(s.kind)) return s.kind + steps;
+  if (s.kind == "pyramid" || s.kind == "stack" || s.kind == "rain") return s.kind + " --n=" + std::to_string(s.n) + steps;
+  if (s.kind == "massratio") return "massratio --top=heavy --heavy-half=0.5 --heavy-mass=100" + steps;
+  if (s.kind == "bullet") return "bullet --n=1" + steps;
+  return "";
+}
+
+std::optional<JsonValue> runProgram(const std::string& command) {
+  FILE* pipe = popen((command + " 2>/dev/null").c_str(), "r");
+  if (!pipe) return std::nullopt;
+  std::string out;
+  char buf[1 << 16];
+  while (std::fgets(buf, sizeof buf, pipe)) out += buf;
+  pclose(pipe);
+  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
+  const size_t last = out.rfind('\n');
+  return parseJson(last == std::string::npos ? out : out.substr(last + 1));
+}
+
+// Pile height loss, overlap, top on top, joint gaps: what says whether a result is as good.
+std::string quality(const JsonValue& r) {
+  const JsonValue* m = r.get("metrics");
+  if (!m) return "";
+  if (!isSuiteScene(r.str("scene").value_or(""))) return stability(r);
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "pen %.3f gap %.4f drop %.3f top %.3f", m->num("max_penetration_m").value_or(NAN),
+                m->num("max_joint_gap_m").value_or(NAN), m->num("mean_drop_m").value_or(NAN),
+                m->num("top_height_loss_m").value_or(NAN));
+  return buf;
+}
+
+struct Series {
+  std::vector<double> ms;
+  std::optional<JsonValue> last;
+  void add(const std::optional<JsonValue>& r) {
+    if (!r || r->get("error")) return;
+    ms.push_back(r->num("ms_median").value_or(NAN));
+    last = r;
+  }
+  double mid() const { return ms.empty() ? NAN : median(ms); }
+  double lo() const { return ms.empty() ? NAN : *std::min_element(ms.begin(), ms.end()); }
+  double hi() const { return ms.empty() ? NAN : *std::max_element(ms.begin(), ms.end()); }
+  std::string spread() const {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.3f [%.3f-%.3f]", mid(), lo(), hi());
+    return buf;
+  }
+};
+
+}  // namespace
+
+int compareV3(const std::vector<BenchScene>& scenes, const std::filesystem::path& program, int rounds, int threads,
+              bool json) {
+  if (!std::filesystem::exists(program)) {
+    std::fprintf(stderr, "bench: no Box2D v3 peer program at %s (--v3 PATH or RIGIDLAB_V3_BENCH)\n", program.c_str());
+    return kExitUsage;
+  }
+  const std::string quoted = "'" + program.string() + "' ";
+  if (!json)
+    std::printf("%-14s %-26s %-26s %-26s %7s %7s   %-44s %s\n", "scene", "rigidlab ms [min-max]", "v3 1 thread",
+                ("v3 " + std::to_string(threads) + " threads").c_str(), "/v3", "/v3 2T", "rigidlab", "Box2D v3");
+  for (const BenchScene& s : scenes) {
+    const std::string args = v3Arguments(s);
+    if (args.empty()) {
+      if (!json) std::printf("%-14s (Box2D v3 has no such scene)\n", s.name.c_str());
+      continue;
+    }
+    Series ours, one, many;
+    for (int r = 0; r < rounds; ++r) {  // alternated, so that a change in load hits all three
+      std::fprintf(stderr, "bench: %s round %d/%d ...\n", s.name.c_str(), r + 1, rounds);
+      ours.add(parseJson(runIsolated(s, 1)));
+      one.add(runProgram(quoted + args + " --reps=1"));
+      if (threads > 1) many.add(runProgram(quoted + args + " --reps=1 --workers=" + std::to_string(threads)));
+    }
+    if (!one.last) {
+      std::fprintf(stderr, "bench: %s: the Box2D v3 program gave no result (%s%s)\n", s.name.c_str(), quoted.c_str(),
+                   args.c_str());
+      continue;
+    }
+    const double r1 = ours.mid() / one.mid(), r2 = ours.mid() / many.mid();
+    if (json) {
+      std::printf("{\"engine\": \"rigidlab\", \"compare\": \"box2d_v3\", \"name\": \"%s\", \"rounds\": %d, "
+                  "\"ms\": %s, \"ms_min\": %s, \"ms_max\": %s, \"v3_ms\": %s, \"v3_ms_min\": %s, \"v3_ms_max\": %s, "
+                  "\"v3_threads\": %d, \"v3_mt_ms\": %s, \"v3_mt_ms_min\": %s, \"v3_mt_ms_max\": %s, \"ratio\": %s, "
+                  "\"ratio_mt\": %s, \"metrics\": %s, \"v3_metrics\": %s}\n",
+                  s.name.c_str(), rounds, fmt(ours.mid()).c_str(), fmt(ours.lo()).c_str(), fmt(ours.hi()).c_str(),
+                  fmt(one.mid()).c_str(), fmt(one.lo()).c_str(), fmt(one.hi()).c_str(), threads,
+                  fmt(many.mid()).c_str(), fmt(many.lo()).c_str(), fmt(many.hi()).c_str(), fmt(r1).c_str(),
+                  fmt(r2).c_str(), ours.last && ours.last->get("metrics") ? ours.last->get("metrics")->dump().c_str() : "{}",
+                  one.last->get("metrics") ? one.last->get("metrics")->dump().c_str() : "{}");
+    } else {
+      std::printf("%-14s %-26s %-26s %-26s %6.2fx %6.2fx   %-44s %s\n", s.name.c_str(), ours.spread().c_str(),
+                  one.spread().c_str(), threads > 1 ? many.spread().c_str() : "-", r1, r2,
+                  ours.last ? quality(*ours.last).c_str() : "", quality(*one.last).c_str());
+    }
+    std::fflush(stdout);
+  }
+  return kExitOk;
+}
+
+}  // namespace rigidlab::app

@@ -1,0 +1,230 @@
+// Shape handles in Lua: body:add_shape{...} returns one, body.shapes lists them.
+//
+//   read        kind ("circle" | "polygon" | "capsule" | "segment" | "chain_segment"), body,
+//               radius (circles, capsules), center (centroid, body coordinates), vertices
+//               (polygons), a, b (capsules, segments, chain segments), mass, area, removed
+//   read/write  density, restitution, friction, static_friction, sensor, category, mask, group
+//   method      shape:remove()
+// The shape properties of a body (body.friction, body.category, ...) read and write the same
+// values for all of its shapes (shapeProperty, setShapeProperty).
+#include "lua_shape.h"
+
+#include <algorithm>
+
+#include "api_names.h"
+#include "bindings.h"
+#include "lua_args.h"
+#include "lua_body_args.h"
+#include "rigidlab/error.h"
+
+namespace rigidlab::lua {
+namespace {
+
+using api::kShapeReadable;
+using api::kShapeWritable;
+
+const LuaShape& selfShape(lua_State* L, std::string_view function) {
+  const LuaShape* s = toHandle<LuaShape>(L, 1);
+  if (!s) fail(L, function, "call it as shape:" + std::string(function) + "(...), with a colon; got " + describe(L, 1));
+  return *s;
+}
+
+// The geometry options a kind takes, for messages: "radius, offset and angle".
+std::string takes(ShapeKind kind) {
+  std::string list;
+  for (std::string_view key : geometryOptions(kind)) list += std::string(key) + ", ";
+  return list + "offset and angle";
+}
+
+int addShape(lua_State* L) {
+  const LuaBody* handle = toHandle<LuaBody>(L, 1);
+  if (!handle)
+    fail(L, "add_shape", "call it as body:add_shape{...}, with a colon; got " + describe(L, 1) + " as the body");
+  Scene::Impl& scene = *handle->scene;
+  requireIdle(L, scene, "add_shape");
+  const BodyId body = liveBody(L, *handle, "add_shape");
+  const Options o(L, "add_shape", sol::stack_object(L, 2), joined({&api::kAddShapeOptions, &api::kShapeOptions}));
+  const ShapeKind kind = shapeKind(o, "shape");
+  // A width given to a circle is a mistake, not something to ignore.
+  for (std::string_view key : {"radius", "width", "height", "vertices", "a", "b"}) {
+    const auto& own = geometryOptions(kind);
+    if (o.has(key) && std::find(own.begin(), own.end(), key) == own.end())
+      o.fail(key,
+             std::string("is not an option of a ") + shapeKindName(kind) + " shape (it takes " + takes(kind) + ")");
+  }
+  World& world = *scene.world;
+  ShapeDef def = readShapeOptions(o, kind != ShapeKind::Segment);
+  def.shape = readGeometry(o, kind);
+  const Vec2 offset = o.vec("offset", Vec2::Zero());
+  const double angle = o.number("angle", 0.0);
+  if (kind == ShapeKind::Segment && world.body(body).isDynamic())
+    o.fail("shape",
+           "\"segment\" needs a static or kinematic body, and this one is dynamic: a segment has no area "
+           "(use a capsule or a thin box)");
+  ShapeId id;
+  try {
+    if (offset != Vec2::Zero() || angle != 0.0) def.shape = transformShape(def.shape, offset, angle);
+    id = world.createShape(body, def);
+  } catch (const InputError& e) {
+    failCore(L, "add_shape", e);
+  }
+  try {
+    scene.host->charge(L, "add_shape", shapeHostBytes(world.shape(id)));
+  } catch (...) {
+    world.destroyShape(id);  // over the memory limit: as if it had not been made
+    throw;
+  }
+  shapeHandle(L, scene, id).push(L);
+  return 1;
+}
+
+int removeShapeMethod(lua_State* L) {
+  const LuaShape& s = selfShape(L, "remove");
+  requireIdle(L, *s.scene, "remove");
+  if (liveWorld(L, *s.scene, "remove").isValid(s.id)) removeShape(L, *s.scene, s.id);
+  return 0;  // removing a removed shape does nothing, as for forces
+}
+
+void pushPoints(lua_State* L, const std::vector<Vec2>& points) {
+  lua_createtable(L, static_cast<int>(points.size()), 0);
+  for (size_t i = 0; i < points.size(); ++i) {
+    pushVec(L, points[i]);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+}
+
+int shapeIndex(lua_State* L) {
+  const LuaShape& self = selfShape(L, "shape");
+  sol::stack_object key(L, 2);
+  const std::string k = fieldName(L, "shape", key);
+  const World& w = liveWorld(L, *self.scene, "shape." + k);
+  if (k == "removed") {
+    lua_pushboolean(L, !w.isValid(self.id));
+    return 1;
+  }
+  if (k == "remove") {
+    lua_pushcfunction(L, guarded<removeShapeMethod>);
+    return 1;
+  }
+  if (std::find(kShapeReadable.begin(), kShapeReadable.end(), k) == kShapeReadable.end())
+    noSuchField(L, "shape", k, kShapeReadable);
+  const BodyShape& s = w.shape(liveShape(L, self, "shape." + k));
+  const Shape& g = s.geometry;
+  const bool two_points =
+      g.type == ShapeType::Capsule || g.type == ShapeType::Segment || g.type == ShapeType::ChainSegment;
+  if (k == "kind") {
+    lua_pushstring(L, shapeTypeName(g.type));
+  } else if (k == "body") {
+    bodyHandle(L, *self.scene, s.body).push(L);
+  } else if (k == "radius") {
+    if (g.type != ShapeType::Circle && g.type != ShapeType::Capsule) return 0;  // nil
+    lua_pushnumber(L, g.radius);
+  } else if (k == "center") {
+    pushVec(L, g.type == ShapeType::Circle ? g.center
+               : hasArea(g.type)           ? computeMass(g, 1.0).center
+                                           : Vec2(0.5 * (g.vertices[0] + g.vertices[1])));
+  } else if (k == "vertices") {
+    if (g.type != ShapeType::Polygon) return 0;
+    pushPoints(L, g.vertices);
+  } else if (k == "a" || k == "b") {
+    if (!two_points) return 0;
+    pushVec(L, g.vertices[k == "a" ? 0 : 1]);
+  } else if (k == "mass") {
+    lua_pushnumber(L, hasArea(g.type) ? computeMass(g, s.density).mass : 0.0);
+  } else if (k == "area") {
+    lua_pushnumber(L, hasArea(g.type) ? computeMass(g, 1.0).area : 0.0);
+  } else {
+    shapeProperty(L, s, k).push(L);
+  }
+  return 1;
+}
+
+int shapeNewIndex(lua_State* L) {
+  const LuaShape& self = selfShape(L, "shape");
+  sol::stack_object key(L, 2);
+  const std::string k = fieldName(L, "shape", key);
+  const std::string function = "shape." + k;
+  requireWritable(L, "shape", k, kShapeReadable, kShapeWritable);
+  requireIdle(L, *self.scene, function);
+  World& w = liveWorld(L, *self.scene, function);
+  setShapeProperty(L, w, liveShape(L, self, function), function, k, sol::stack_object(L, 3));
+  return 0;
+}
+
+}  // namespace
+
+int addShapeMethod(lua_State* L) { return guarded<addShape>(L); }
+
+sol::object shapeProperty(lua_State* L, const BodyShape& s, std::string_view name) {
+  if (name == "density")
+    return hasArea(s.geometry.type) ? sol::make_object(L, s.density) : sol::make_object(L, sol::lua_nil);
+  if (name == "restitution") return sol::make_object(L, s.material.restitution);
+  if (name == "friction") return sol::make_object(L, s.material.friction);
+  if (name == "static_friction") return sol::make_object(L, s.material.static_friction);
+  if (name == "sensor") return sol::make_object(L, s.sensor);
+  // The bits as a Lua integer: the default mask, every bit, reads -1.
+  if (name == "category") return sol::make_object(L, static_cast<lua_Integer>(s.filter.category));
+  if (name == "mask") return sol::make_object(L, static_cast<lua_Integer>(s.filter.mask));
+  if (name == "group") return sol::make_object(L, static_cast<lua_Integer>(s.filter.group));
+  return sol::make_object(L, sol::lua_nil);
+}
+
+void setShapeProperty(lua_State* L, World& w, ShapeId id, std::string_view function, std::string_view name,
+                      const sol::object& value) {
+  const BodyShape& s = w.shape(id);
+  Material m = s.material;
+  Filter f = s.filter;
+  try {
+    if (name == "density") {
+      if (!hasArea(s.geometry.type))
+        fail(L, function, std::string("a ") + shapeTypeName(s.geometry.type) + " has no area, so no density");
+      w.setShapeDensity(id, checkNumber(L, function, "", value, Range::Positive));
+    } else if (name == "sensor") {
+      w.setShapeSensor(id, checkBool(L, function, "", value));
+    } else if (name == "category" || name == "mask" || name == "group") {
+      if (name == "category") f.category = checkBits(L, function, "", value);
+      if (name == "mask") f.mask = checkBits(L, function, "", value);
+      if (name == "group") f.group = static_cast<int32_t>(checkInteger(L, function, "", value, INT32_MIN, INT32_MAX));
+      w.setShapeFilter(id, f);
+    } else {
+      const double x = checkNumber(L, function, "", value, Range::NonNegative);
+      if (name == "restitution" && x > 1.0) fail(L, function, "must be between 0 and 1, got " + formatNumber(x));
+      if (name == "restitution") m.restitution = x;
+      if (name == "friction") m.friction = x;
+      if (name == "static_friction") m.static_friction = x;
+      w.setShapeMaterial(id, m);
+    }
+  } catch (const InputError& e) {
+    failCore(L, function, e);
+  }
+}
+
+void registerShapeType(lua_State* L) {
+  registerHandleType(L, LuaShape::kMetatable, guarded<shapeIndex>, guarded<shapeNewIndex>,
+                     guarded<handleToString<LuaShape, describeShape>>, guarded<handlesEqual<LuaShape, &LuaShape::id>>);
+}
+
+sol::object shapeHandle(lua_State* L, Scene::Impl& scene, ShapeId id) {
+  return cachedHandle(L, scene.shape_handles, handleKey(id.index, id.generation), LuaShape{&scene, id});
+}
+
+ShapeId liveShape(lua_State* L, const LuaShape& shape, std::string_view function) {
+  if (!liveWorld(L, *shape.scene, function).isValid(shape.id))
+    fail(L, function, "the shape was removed (by shape:remove() or with its body)");
+  return shape.id;
+}
+
+void removeShape(lua_State* L, Scene::Impl& scene, ShapeId id) {
+  World& w = liveWorld(L, scene, "remove");
+  const size_t bytes = shapeHostBytes(w.shape(id));
+  w.destroyShape(id);
+  scene.host->release(bytes);
+}
+
+std::string describeShape(const LuaShape& shape) {
+  const World* w = shape.scene->world.get();
+  if (!w || !w->isValid(shape.id)) return "shape (removed)";
+  return std::string(shapeTypeName(w->shape(shape.id).geometry.type)) + " shape";
+}
+
+}  // namespace rigidlab::lua
