@@ -281,8 +281,8 @@ int writeSummary(const ReportInput& in, const std::filesystem::path& dir, bool s
   md << "## Observed order against expected\n\n";
   md << "Least-squares slope of log err against log dt over the runs with 1e3 ε < err < 0.1 (and err above "
         "100 N ε, the round-off of N steps); at least 2 runs, else \"pre-asymptotic\" (errors above 0.1) or "
-        "\"round-off\" (errors at the floor). Gated: smooth and sanity problems, tolerance ±0.2 (±0.3 for order "
-        "4); contact problems are reported only.\n\n";
+        "\"round-off\" (errors at the floor). Gated: smooth, impact (impacts located inside the step) and sanity "
+        "problems, tolerance ±0.2 (±0.3 for order 4); contact problems are reported only.\n\n";
   md << "| problem | group |";
   for (const std::string& i : in.integrators) md << ' ' << i << " |";
   md << "\n|---|---|";
