@@ -519,6 +519,10 @@ std::optional<std::string> writePlots(const ReportInput& in, const std::filesyst
         wplot += "'accuracy.csv' skip 1 using (" + sel(p, i, true) + " ? ($" + std::to_string(kErr) + " > 1e-17 ? $" +
                  std::to_string(kErr) + " : 1e-17) : NaN):" + std::to_string(kWall) + " with linespoints lw 2 dt " +
                  std::to_string(s.dash) + " lc rgb '" + s.color + "' pt " + std::to_string(s.filled) + " ps 1.1 title " + gpString(i) + " noenhanced, \\\n  ";
+        // Each marker labelled with its step, 1/30 … 1/7680 (1/dt rounded: the sweep's dt are 1/30 · 2^-k).
+        wplot += "'accuracy.csv' skip 1 using (" + sel(p, i, true) + " ? ($" + std::to_string(kErr) + " > 1e-17 ? $" +
+                 std::to_string(kErr) + " : 1e-17) : NaN):" + std::to_string(kWall) + ":(sprintf('1/%.0f', 1/$" +
+                 std::to_string(kDt) + ")) with labels offset char 0.6,0.6 left font ',7' tc rgb '" + s.color + "' notitle, \\\n  ";
         if (any_unstable)
           wplot += "'accuracy.csv' skip 1 using (" + sel(p, i, false) + " ? " + num(xedge) + " : NaN):" +
                    std::to_string(kWall) + " with points lc rgb '" + s.color + "' pt " + std::to_string(s.open) +
@@ -526,7 +530,7 @@ std::optional<std::string> writePlots(const ReportInput& in, const std::filesyst
       }
       if (any_unstable)
         wplot += "NaN with points pt 6 lc rgb '#555555' title 'unstable (time until stopped): right edge', \\\n  ";
-      wplot += "NaN with lines lc rgb '#ffffff' title 'one marker per dt', \\\n  ";
+      wplot += "NaN with lines lc rgb '#ffffff' title 'one marker per dt, labelled with it [s]', \\\n  ";
       wplot.resize(wplot.size() - 6);
       wp << wplot << "\n";
       terminals("wp_" + p->name, wp.str());
