@@ -52,8 +52,8 @@ Writes to DIR (default accuracy-report):
 
 Prints the observed order per problem and integrator beside the expected one ("?": no fit, the
 sweep stops before the asymptotic range). Exit status: 0 if every gated expectation holds
-(orders on smooth and sanity problems; with --kmax below 8 or --quick, a missing fit does not
-count), 1 if one fails or a scene has an error, 2 for a usage error.
+(orders on smooth, impact and sanity problems; with --kmax below 8 or --quick, a missing fit
+does not count), 1 if one fails or a scene has an error, 2 for a usage error.
 )";
 
 std::vector<std::string> splitList(const std::string& s) {

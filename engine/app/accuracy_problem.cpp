@@ -16,6 +16,7 @@ namespace rigidlab::app::accuracy {
 const char* groupName(Group g) {
   switch (g) {
     case Group::Smooth: return "smooth";
+    case Group::Impact: return "impact";
     case Group::Contact: return "contact";
     case Group::Sanity: return "sanity";
   }
@@ -314,9 +315,10 @@ Problem loadProblem(const std::filesystem::path& file) {
     f.fail("t_end", "must be a multiple of sample_dt (" + std::to_string(p.sample_dt) + " s)");
   if (const auto g = f.string("group")) {
     if (*g == "smooth") p.group = Group::Smooth;
+    else if (*g == "impact") p.group = Group::Impact;
     else if (*g == "contact") p.group = Group::Contact;
     else if (*g == "sanity") p.group = Group::Sanity;
-    else f.fail("group", "must be one of smooth, contact, sanity, got \"" + *g + "\"");
+    else f.fail("group", "must be one of smooth, impact, contact, sanity, got \"" + *g + "\"");
   }
   static const std::set<std::string> kMetrics = {"energy", "momentum", "angmom", "velocity", "pos_linf", "pos_final"};
   for (const std::string& m : f.stringList("metrics")) {

@@ -22,7 +22,9 @@ namespace rigidlab::app::accuracy {
 // What the report does with a problem (README "group").
 enum class Group {
   Smooth,   // no contacts: the order is fitted and gated
-  Contact,  // collisions once per step: O(h) expected, order reported
+  Impact,   // isolated impacts, located inside the step (ImpactHandling::Located): fitted and gated
+            //   like a smooth problem, the integrator's own order expected through the impacts
+  Contact,  // persistent contact, solved once per step: order reported, not gated
   Sanity,   // round-off checks (free fall): not fitted
 };
 const char* groupName(Group g);

@@ -50,6 +50,7 @@ std::string ErrorPass::stages() const {
   std::string s = "integrate";
   if (force_evals > 0) s += lua_calls > 0 ? ", forces (Lua)" : ", forces";
   if (pairs_max > 0) s += contact_points_max > 0 ? ", pairs, contacts" : ", pairs (no contact)";
+  if (impacts > 0) s += ", located impacts";
   return s;
 }
 
@@ -124,6 +125,7 @@ ErrorPass errorPass(const Problem& problem, Integrator integrator, double dt, do
     r.force_evals += s.force_evaluations;
     r.pairs_max = std::max(r.pairs_max, s.pairs);
     r.contact_points_max = std::max(r.contact_points_max, s.contact_points);
+    r.impacts += s.impacts_located;
     r.integrate_ms += s.integrate_ms;
     r.broad_ms += s.broad_phase_ms;
     r.narrow_ms += s.narrow_phase_ms;

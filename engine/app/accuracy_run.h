@@ -38,6 +38,7 @@ struct ErrorPass {
   double angmom_err = 0.0;  // max |L − L0| / |L0| (about the origin)
   long force_evals = 0, lua_calls = 0;  // during the steps only
   int pairs_max = 0, contact_points_max = 0;
+  long impacts = 0;  // impacts located inside steps (ImpactHandling::Located)
   // Summed stage times of the error pass [ms] (integrate, broad, narrow, solve, correct).
   double integrate_ms = 0, broad_ms = 0, narrow_ms = 0, solve_ms = 0, correct_ms = 0;
   std::vector<double> energy_t, energy_ratio;  // E(t)/E0 at the samples, if recorded

@@ -21,6 +21,7 @@ namespace {
 
 constexpr const char* kHelp = R"(usage: rigidlab bench [SCENE...] [--reps R] [--steps N] [--json] [--compare] [--peers DIR]
                       [--v3 PROGRAM] [--v3-threads T] [--solver NAME] [--substeps N] [--iterations N]
+                      [--impacts NAME]
 
 Times benchmark scenes (all of them without SCENE arguments), each in its own process. Per scene:
 median and p95 ms per step (only World::step is timed), setup time, the per-stage breakdown,
@@ -39,6 +40,9 @@ contacts, calls into Lua, peak memory, and the peers' stability metrics.
   --solver NAME contact solver: auto (default), sequential_impulses or soft_step
   --substeps N  soft step sub-steps per step (default 8)
   --iterations N  sequential impulses velocity passes per step (default 10)
+  --impacts NAME  located (default: impacts of small free islands located inside the step while
+                at most 128 bodies are awake) or per_step (every impact once per step), so that
+                two runs show what located impacts cost
 
 scenes:
 )";
@@ -46,7 +50,7 @@ scenes:
 }  // namespace
 
 int benchCommand(const std::vector<std::string>& argv) {
-  const Args args("bench", argv, {"reps", "steps", "peers", "v3", "v3-threads", "solver", "substeps", "iterations"}, {"json", "compare"});
+  const Args args("bench", argv, {"reps", "steps", "peers", "v3", "v3-threads", "solver", "substeps", "iterations", "impacts"}, {"json", "compare"});
   if (args.help()) {
     std::fputs(kHelp, stdout);
     for (const BenchScene& s : benchScenes()) std::printf("  %-12s %s\n", s.name.c_str(), s.description.c_str());
@@ -60,6 +64,11 @@ int benchCommand(const std::vector<std::string>& argv) {
     const auto solver = parseContactSolver(*name);
     if (!solver) throw UsageError("bench: --solver must be one of " + contactSolverNames() + ", got '" + *name + "'");
     settings.contact_solver = *solver;
+  }
+  if (const auto name = args.value("impacts")) {
+    const auto impacts = parseImpactHandling(*name);
+    if (!impacts) throw UsageError("bench: --impacts must be one of " + impactHandlingNames() + ", got '" + *name + "'");
+    settings.impacts = *impacts;
   }
   settings.substeps = static_cast<int>(args.integer("substeps", 1).value_or(settings.substeps));
   settings.iterations = static_cast<int>(args.integer("iterations", 1).value_or(settings.iterations));

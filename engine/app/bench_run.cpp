@@ -108,7 +108,8 @@ std::string runScene(const BenchScene& scene, int reps) {
                   std::to_string(reps) + ", \"sleep\": false, \"settings\": {\"solver\": \"" +
                   std::string(contactSolverName(benchSettings().contact_solver)) + "\", \"substeps\": " +
                   std::to_string(benchSettings().substeps) + ", \"iterations\": " +
-                  std::to_string(benchSettings().iterations) + "}, \"ms_median\": " + fmt(median(medians)) +
+                  std::to_string(benchSettings().iterations) + ", \"impacts\": \"" +
+                  std::string(impactHandlingName(benchSettings().impacts)) + "\"}, \"ms_median\": " + fmt(median(medians)) +
                   ", \"ms_median_best_rep\": " + fmt(*std::min_element(medians.begin(), medians.end())) +
                   ", \"ms_p95\": " + fmt(median(p95s)) + ", \"ms_mean\": " + fmt(median(means)) +
                   ", \"ms_first_step\": " + fmt(median(firsts)) + ", \"ms_total\": " + fmt(median(totals)) +

@@ -109,6 +109,24 @@ BenchWorld massRatio() {
   return b;
 }
 
+// 100 balls (r = 0.1 m, e = 0.8) 0.5 m apart, dropped from 1 m to 1.99 m, so that every impact
+// falls at its own phase of the step: 100 islands of one body, each in free flight between its
+// bounces, which is what located impacts are for (100 first impacts in the first 60 steps, the
+// second ones after 1.17 s).
+BenchWorld balls() {
+  BenchWorld b;
+  b.world = std::make_unique<World>(peerWorld());
+  addBox(b, 0.0, -1.0, 30.0, 1.0, true);
+  for (int i = 0; i < 100; ++i) {
+    BodyDef d;
+    d.shape = makeCircle(0.1);
+    d.position = Vec2(-24.75 + 0.5 * i, 1.1 + 0.01 * i);
+    d.restitution = 0.8;
+    b.bodies.push_back({b.world->createBody(d), false, true, d.position, 0.0, 0.0, 0.1, false});
+  }
+  return b;
+}
+
 BenchWorld bullet() {
   BenchWorld b;
   b.world = std::make_unique<World>(peerWorld());
@@ -220,6 +238,8 @@ void BenchTracker::observe(const std::string& kind, BenchWorld& w, int step, dou
     max_ground_pen = std::max(max_ground_pen, 0.0 - boxBottom(w.bodies[w.bottom], bs));
   } else if (kind == "bullet" && step == 0) {
     vx_after_first_step = stateOf(w, w.top).v.x();
+  } else if (kind == "balls") {
+    impacts_located += w.get().stats().impacts_located;
   } else if (kind == "stack") {
     if (lean_time < 0 && std::abs(stateOf(w, w.top).p.x() - w.bodies[w.top].start.x()) > 0.1) lean_time = (step + 1) * dt;
   }
@@ -312,6 +332,8 @@ std::string benchMetrics(const BenchScene& scene, BenchWorld& w, const BenchTrac
     j.num("top_height_loss_m", td.start.y() - ts.p.y());
     j.num("bottom_angle_rad", bs.angle);
     j.boolean("collapsed", collapsed);
+  } else if (kind == "balls") {
+    j.integer("impacts_located", t.impacts_located);
   } else if (kind == "bullet") {
     const State s = stateOf(w, w.top);
     const double r = w.bodies[w.top].r;
@@ -339,6 +361,7 @@ const std::vector<BenchScene>& benchScenes() {
       {"rain4000", "rain", 4000, "4000 circles dropped into a 40 m container, 600 steps", 600, 1.0 / 60.0, [] { return rain(4000); }},
       {"massratio", "massratio", 2, "a 100 kg box on a 1 kg box, 5 s", 300, 1.0 / 60.0, massRatio},
       {"bullet", "bullet", 1, "a 0.1 m disc at 500 m/s toward a 0.1 m wall, 1 s", 60, 1.0 / 60.0, bullet},
+      {"balls100", "balls", 100, "100 balls bouncing apart (e = 0.8, dropped 1-2 m), 10 s", 600, 1.0 / 60.0, balls},
       {"springs", "springs", 1000, "1000 bodies on built-in springs, RK4, no contacts", 600, 1.0 / 60.0, builtinSprings},
       {"lua_springs", "lua_springs", 1000, "1000 bodies on Lua springs (forces.spring), RK4, no contacts", 600, 1.0 / 60.0,
        luaSprings},

@@ -2,7 +2,8 @@
 // are built exactly as ../shared/peers/scenes.h describes them for Box2D 2.4 and Chipmunk 7 (same
 // sizes, positions, density 1, friction 0.6, gravity (0, −10), dt 1/60, same step counts), and
 // report the same stability metrics, so one script compares the engines. rigidlab's own scenes
-// measure forces: 1000 bodies on springs (no contacts), built in and written in Lua.
+// measure forces (1000 bodies on springs, no contacts, built in and written in Lua) and located
+// impacts (100 balls bouncing apart, each its own island).
 #pragma once
 
 #include <functional>
@@ -45,6 +46,7 @@ struct BenchTracker {
   double collapse_time = -1, max_box_pen = -1e30, max_ground_pen = -1e30;
   double vx_after_first_step = NAN;
   double lean_time = -1;
+  long impacts_located = 0;  // over every step (balls)
   void observe(const std::string& kind, BenchWorld& w, int step, double dt);
 };
 

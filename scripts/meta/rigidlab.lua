@@ -643,6 +643,7 @@ function Draw:capsule(a, b, radius, color, fill) end
 ---@field dt? number default 1/60
 ---@field integrator? "euler"|"semi_implicit_euler"|"rk4"|"implicit_euler" default "rk4"
 ---@field solver? "auto"|"sequential_impulses"|"soft_step" default "auto": islands of fewer than 256 contact points by sequential impulses (exact impacts, rigid stacks), larger piles by the soft step (sub-stepped soft contacts, which keep them standing)
+---@field impacts? "located"|"per_step" default "located": impacts of a few bodies in free flight (islands of at most 8 bodies with no touching contact, no joint, while at most 128 bodies are awake) are found and resolved at the moment of contact inside the step, so RK4 keeps its order through them; "per_step": every contact once per step, at the step's end (first order)
 ---@field iterations? integer sequential impulses: velocity passes per step, default 10
 ---@field substeps? integer soft step: sub-steps per step, 1 to 64, default 8
 ---@field sleeping? boolean default true: islands that stay still for 0.5 s stop being simulated

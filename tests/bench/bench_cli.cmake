@@ -32,6 +32,16 @@ expect_metric(tumbler 2 bodies 2026)
 expect_metric(ragdolls 9 bodies 550)
 expect_metric(ragdolls 9 joints 500)
 
+# 100 balls, each first impact located inside its step in the first second (the second ones come
+# after 1.17 s); once per step, none.
+expect_metric(balls100 60 impacts_located 100)
+run(0 bench balls100 --steps 60 --reps 1 --json --impacts per_step)
+string(JSON value GET "${out}" metrics impacts_located)
+if(NOT value EQUAL 0)
+  message(FATAL_ERROR "bench balls100 --impacts per_step: ${value} impacts located, expected 0")
+endif()
+run(2 bench balls100 --impacts sometimes)
+
 run(2 bench no_such_scene)
 run(2 bench stack10 --steps 0)
 run(2 bench stack10 --v3-threads 0)

@@ -311,6 +311,7 @@ TEST_CASE("continuous collision: fast bodies do not tunnel through a thin static
     d.angular_velocity = c.circle ? 0.0 : 30.0;
     d.restitution = c.restitution;
     const BodyId bullet = w.createBody(d);
+    const double energy = w.kineticEnergy();
     for (int i = 0; i < 60; ++i) {
       w.step(1.0 / 60.0);
       REQUIRE(w.body(bullet).position().x() < 4.95);  // never beyond the near face
@@ -320,29 +321,47 @@ TEST_CASE("continuous collision: fast bodies do not tunnel through a thin static
     } else if (c.circle) {
       CHECK(std::abs(w.body(bullet).velocity.x()) < 1e-6);  // stopped at the wall
     } else {
-      CHECK(w.body(bullet).velocity.x() <= 0.0);  // a spinning box may be thrown back by its spin
-      CHECK(std::abs(w.body(bullet).velocity.x()) < 0.05 * c.speed);
+      // A spinning box may be thrown back by its spin (the first corner sticks, e = 0 with
+      // friction: 400 → −72 m/s, spinning at −339 rad/s), but the impacts only take energy.
+      CHECK(w.body(bullet).velocity.x() <= 0.0);
+      CHECK(w.kineticEnergy() < 0.05 * energy);
     }
   }
-  // Without it the 100 m/s disc passes: 1.67 m per step against a 0.1 m wall.
-  World w;
-  w.setGravity(Vec2::Zero());
-  w.setContinuous(false);
-  test::addBox(w, 0.1, 10, {5.0, 0.0}, true);
-  const BodyId disc = test::addCircle(w, 0.1, {0.8, 0.0});
-  w.setVelocity(disc, {100.0, 0.0});
-  for (int i = 0; i < 10; ++i) w.step(1.0 / 60.0);
-  CHECK(w.body(disc).position().x() > 5.0);
+  // The impact search alone (continuous collision off) finds the wall too; with impacts handled
+  // once per step and no continuous collision the 100 m/s disc passes: 1.67 m per step against a
+  // 0.1 m wall.
+  for (const ImpactHandling impacts : {ImpactHandling::Located, ImpactHandling::PerStep}) {
+    CAPTURE(impactHandlingName(impacts));
+    World w;
+    w.setGravity(Vec2::Zero());
+    w.setContinuous(false);
+    w.setImpacts(impacts);
+    test::addBox(w, 0.1, 10, {5.0, 0.0}, true);
+    const BodyId disc = test::addCircle(w, 0.1, {0.8, 0.0});
+    w.setVelocity(disc, {100.0, 0.0});
+    for (int i = 0; i < 10; ++i) w.step(1.0 / 60.0);
+    if (impacts == ImpactHandling::Located) {
+      CHECK(w.body(disc).position().x() < 4.95);
+      CHECK(std::abs(w.body(disc).velocity.x()) < 1e-6);
+    } else {
+      CHECK(w.body(disc).position().x() > 5.0);
+    }
+  }
 }
 
 TEST_CASE("continuous collision: walls added, moved or made static after the first step stop fast bodies too") {
   // The static shapes are kept in a tree between steps; every edit that can add or move one must
-  // reach it. Each case fires a 100 m/s disc at x = 5 after the world has stepped once.
+  // reach it. Each case fires a 100 m/s disc at x = 5 after the world has stepped once. With impacts
+  // once per step the disc is swept against the tree; with located impacts it is not swept (the
+  // impact search finds the wall), and the edits must reach that search as well.
   enum class Edit { AddWall, MoveWall, MakeStatic, AddShape, Enable };
+  for (const ImpactHandling impacts : {ImpactHandling::PerStep, ImpactHandling::Located})
   for (Edit edit : {Edit::AddWall, Edit::MoveWall, Edit::MakeStatic, Edit::AddShape, Edit::Enable}) {
+    CAPTURE(impactHandlingName(impacts));
     CAPTURE(static_cast<int>(edit));
     World w;
     w.setGravity(Vec2::Zero());
+    w.setImpacts(impacts);
     test::addBox(w, 1, 1, {-20.0, 30.0}, true);  // some static shape, so the tree exists
     BodyId wall;
     if (edit == Edit::MoveWall) wall = test::addBox(w, 0.1, 10, {50.0, 0.0}, true);
@@ -359,7 +378,7 @@ TEST_CASE("continuous collision: walls added, moved or made static after the fir
     const BodyId disc = test::addCircle(w, 0.1, {0.8, 0.0});
     w.setVelocity(disc, {-100.0, 0.0});
     w.step(1.0 / 60.0);  // a first sweep (away from x = 5) builds the tree
-    REQUIRE(w.stats().ccd_sweeps == 1);
+    REQUIRE(w.stats().ccd_sweeps == (impacts == ImpactHandling::PerStep ? 1 : 0));
     switch (edit) {
       case Edit::AddWall: test::addBox(w, 0.1, 10, {5.0, 0.0}, true); break;
       case Edit::MoveWall: w.setTransform(wall, {5.0, 0.0}, 0.0); break;

@@ -72,6 +72,47 @@ void finishContactEvents(WorldImpl& w) {
   }
 }
 
+// Impacts located inside the step (event_location.cpp) that ended in a bounce: the shapes touched
+// and parted between two narrow phases, so the events come from the impact itself, with the
+// closing speed at the impact and its impulses. An impact that ended in resting contact is left to
+// the narrow phase, which finds the contact touching at the end of the step and reports it as
+// any other (begin and hit with the closing speed at the start of the step).
+void locatedImpactEvents(WorldImpl& w) {
+  if (!(w.every_contact_event || w.event_shapes > 0)) return;
+  for (const LocatedImpact& li : w.impact.log) {
+    if (!li.separating) continue;
+    const BodyShape &sa = w.shapes[li.shape_a], &sb = w.shapes[li.shape_b];
+    const bool contact = w.every_contact_event || sa.contact_events || sb.contact_events;
+    const double threshold = std::min(sa.hit_events ? sa.hit_speed : INFINITY, sb.hit_events ? sb.hit_speed : INFINITY);
+    if (!contact && !(li.approach_speed >= threshold)) continue;
+    // Still touching at the end of the step (an impact at its very end): the narrow phase reports it.
+    const auto at = std::lower_bound(w.contacts.begin(), w.contacts.end(), li, [](const Contact& c, const LocatedImpact& l) {
+      return c.shape_a < l.shape_a || (c.shape_a == l.shape_a && c.shape_b < l.shape_b);
+    });
+    if (at != w.contacts.end() && at->shape_a == li.shape_a && at->shape_b == li.shape_b && at->touching) continue;
+    World::ContactEvent e;
+    e.shape_a = sa.id;
+    e.shape_b = sb.id;
+    e.a = w.bodies[li.a].id;
+    e.b = w.bodies[li.b].id;
+    e.normal = li.normal;
+    e.count = li.count;
+    for (int i = 0; i < li.count; ++i) e.points[i] = li.points[i];
+    e.point = li.count == 2 ? Vec2(0.5 * (e.points[0] + e.points[1])) : e.points[0];
+    e.approach_speed = li.approach_speed;
+    e.normal_impulse = li.normal_impulse;
+    e.tangent_impulse = li.tangent_impulse;
+    const auto push = [&](World::ContactEvent::Kind kind) {
+      e.kind = kind;
+      w.contact_events.push_back(e);
+      w.event_contacts.push_back(UINT32_MAX);
+    };
+    if (contact) push(World::ContactEvent::Kind::Begin);
+    if (li.approach_speed >= threshold) push(World::ContactEvent::Kind::Hit);
+    if (contact) push(World::ContactEvent::Kind::End);
+  }
+}
+
 void WorldImpl::countShape(const BodyShape& s, int sign) {
   const auto add = [&](uint32_t& counter, bool flagged) {
     if (flagged) counter = static_cast<uint32_t>(static_cast<int64_t>(counter) + sign);
@@ -82,6 +123,27 @@ void WorldImpl::countShape(const BodyShape& s, int sign) {
 }
 
 const std::vector<World::ContactEvent>& World::contactEvents() const { return impl_->contact_events; }
+
+std::vector<World::Impact> World::impacts() const {
+  const WorldImpl& w = *impl_;
+  std::vector<Impact> out;
+  for (const LocatedImpact& l : w.impact.log) {
+    Impact& i = out.emplace_back();
+    i.shape_a = w.shapes[l.shape_a].id;
+    i.shape_b = w.shapes[l.shape_b].id;
+    i.a = w.bodies[l.a].id;
+    i.b = w.bodies[l.b].id;
+    i.time = w.impact.intervals.front().start + l.time;
+    i.normal = l.normal;
+    i.count = l.count;
+    for (int k = 0; k < l.count; ++k) i.points[k] = l.points[k];
+    i.approach_speed = l.approach_speed;
+    i.normal_impulse = l.normal_impulse;
+    i.tangent_impulse = l.tangent_impulse;
+    i.separating = l.separating;
+  }
+  return out;
+}
 void World::setContactEvents(bool every_contact) { impl_->every_contact_event = every_contact; }
 
 }  // namespace rigidlab

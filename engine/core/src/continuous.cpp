@@ -11,9 +11,16 @@
 //   |Δc| + |Δθ|·extent   per unit of t,
 // so t may advance by d over that bound without missing contact. Once the shapes are within a
 // fraction of the contact margin, the body is put back there for the rest of the step, keeping its
-// velocity: the narrow phase then finds the contact (speculatively) and the solver stops or
-// bounces the body right away (contact_solver.cpp: the impact happens now, not next step). The
-// body loses the part of the step after the impact (as Box2D 2.4's does).
+// velocity as it was at that moment (the start and end velocities interpolated like the position:
+// exact under a constant force); the narrow phase then finds the contact (speculatively) and the
+// solver stops or bounces the body right away (contact_solver.cpp: the impact happens now, not next
+// step). The body loses the part of the step after the impact (as Box2D 2.4's does). Keeping the
+// end-of-step velocity there instead put the body on the surface with the speed it would have had
+// a fraction of a step later: an elastic ball (r = 0.1 m) dropped 1 m gained 7 % of its energy per
+// bounce with RK4 at dt = 1/30.
+// Bodies whose impacts are located (event_location.cpp) are not swept against static bodies: the
+// search along their path already finds the first contact; located bullets are still swept against
+// the moving bodies that are not located.
 // Bullets (BodyDef::bullet) are also swept against moving bodies that are not bullets, where the
 // integration left them, so that a fast small body stops at a thin moving one.
 #include <algorithm>
@@ -53,10 +60,12 @@ void sweepFastBodies(WorldImpl& w) {
   // The bodies that could skip over something: most steps have none, and then nothing else is done.
   w.fast_bodies.clear();
   bool bullets = false;
+  const auto located = [&](uint32_t slot) { return slot < w.impact.located.size() && w.impact.located[slot]; };
   for (uint32_t i = 0; i < n; ++i) {
     if (!w.isActive(i)) continue;
     const Body& b = w.bodies[i];
     bullets |= b.bullet;
+    if (located(i) && !b.bullet) continue;  // the search along its path already finds its first contact
     // A body's thinnest and widest shapes bound what it can skip and how far its points travel.
     if (b.max_extent == 0.0) continue;  // no solid shape
     const double travel = (b.center - w.start_center[i]).norm() + std::abs(b.angle - w.start_angle[i]) * b.max_extent;
@@ -91,6 +100,7 @@ void sweepFastBodies(WorldImpl& w) {
     const auto sweepOne = [&](const BodyShape& mover, const Aabb& swept, uint32_t s) {
       const BodyShape& wall = w.shapes[s];
       if (wall.body.index == i || wall.sensor || !shouldCollide(mover.filter, wall.filter)) return;
+      if (located(wall.body.index)) return;  // two located bodies: their impacts are located
       const Body& wall_body = w.bodies[wall.body.index];
       if (!wall_body.enabled || !swept.overlaps(computeAabb(wall.geometry, wall_body.xf))) return;
       if (wall_body.isDynamic() && w.jointBlocksCollision(i, wall.body.index)) return;
@@ -115,10 +125,11 @@ void sweepFastBodies(WorldImpl& w) {
       const Aabb end = computeAabb(mover.geometry, b.xf);
       swept.lower = swept.lower.cwiseMin(end.lower);
       swept.upper = swept.upper.cwiseMax(end.upper);
-      w.static_tree.query(swept, [&](uint32_t s) {
-        if (w.shape_alive[s] && w.bodyOf(s).isStatic()) sweepOne(mover, swept, s);
-        return true;
-      });
+      if (!located(i))
+        w.static_tree.query(swept, [&](uint32_t s) {
+          if (w.shape_alive[s] && w.bodyOf(s).isStatic()) sweepOne(mover, swept, s);
+          return true;
+        });
       if (b.bullet)
         for (uint32_t s : w.ccd_movers) sweepOne(mover, swept, s);
     }
@@ -127,6 +138,8 @@ void sweepFastBodies(WorldImpl& w) {
       w.ccd_hit[i] = 1;
       b.center = c0 + first * (c1 - c0);
       b.angle = a0 + first * (a1 - a0);
+      b.velocity = w.start_velocity[i] + first * (b.velocity - w.start_velocity[i]);
+      b.angular_velocity = w.start_angular_velocity[i] + first * (b.angular_velocity - w.start_angular_velocity[i]);
       WorldImpl::syncTransform(b);
     }
   }

@@ -22,7 +22,7 @@
 
 namespace rigidlab {
 
-bool implicitVelocityChange(WorldImpl& w, double t0, double h, bool stiffness) {
+bool implicitVelocityChange(WorldImpl& w, double t0, double h, bool stiffness, const char* only) {
   const uint32_t n = static_cast<uint32_t>(w.bodies.size());
   auto& s = w.implicit;
   s.row.assign(n, -1);
@@ -35,6 +35,7 @@ bool implicitVelocityChange(WorldImpl& w, double t0, double h, bool stiffness) {
   bool coupled = false;
   for (const ForceEntry& f : w.forces) {
     if (!f.alive || f.expires_at <= t0) continue;
+    if (only && !only[f.a.index] && (f.b.isNull() || !only[f.b.index])) continue;  // another island's
     const BodyState& a = w.states[f.a.index];
     const BodyState* b = f.b.isNull() ? nullptr : &w.states[f.b.index];
     ForceJacobian j;

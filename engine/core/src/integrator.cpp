@@ -18,9 +18,10 @@
 // In the Euler methods the damping of springs and dampers is linearly implicit, so a damper never
 // flips a velocity's sign (implicit_solve.cpp).
 //
-// Time-limited forces (origin.md §6): a step that straddles a force's end time is split there, so
-// the force acts for exactly its duration. Without the split every integrator, RK4 included, would
-// be first order on such forces (accuracy.md §3.7).
+// The step's time line (event_location.cpp) calls integrateInterval for each piece of the step:
+// the step is split at the end times of time-limited forces and at located impacts. An interval may
+// be integrated for some bodies only (`only`): the bodies of one island, which no force links to
+// the others, integrated again up to an impact.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -35,12 +36,17 @@ using Clock = std::chrono::steady_clock;
 
 bool isActive(const ForceEntry& f, double t0) { return f.alive && f.expires_at > t0; }
 
+// Is the force among those of the bodies marked in `only` (nullptr: every force)?
+bool selected(const ForceEntry& f, const char* only) {
+  return !only || only[f.a.index] || (!f.b.isNull() && only[f.b.index]);
+}
+
 // Adds the wrenches of the active forces of one class (state-dependent or not), evaluated at time t
 // on w.states, into `out`.
-void evaluateForces(WorldImpl& w, double t0, double t, bool state_dependent, std::vector<Wrench>& out) {
+void evaluateForces(WorldImpl& w, double t0, double t, bool state_dependent, std::vector<Wrench>& out, const char* only) {
   const auto start = Clock::now();
   for (ForceEntry& f : w.forces) {
-    if (!isActive(f, t0) || f.force->dependsOnState() != state_dependent) continue;
+    if (!isActive(f, t0) || f.force->dependsOnState() != state_dependent || !selected(f, only)) continue;
     const BodyState& a = w.states[f.a.index];
     const BodyState* b = f.b.isNull() ? nullptr : &w.states[f.b.index];
     ForceOutput result;
@@ -78,17 +84,18 @@ void setStageState(WorldImpl& w, uint32_t i, const Vec2& c, double angle, const 
   s.angular_velocity = omega;
 }
 
-bool isMoving(const WorldImpl& w, uint32_t i) { return w.isActive(i); }  // dynamic and awake
+// Dynamic and awake, and among the bodies integrated (`only`, nullptr: all).
+bool isMoving(const WorldImpl& w, uint32_t i, const char* only) { return w.isActive(i) && (!only || only[i]); }
 
 // True if some body's dampers (Force::dampingRate, summed per body) reach h·c/m > 2.5 or
 // h·c_ω/I > 2.5 in this interval.
-bool dampingTooStiffForRk4(WorldImpl& w, double t0, double h) {
+bool dampingTooStiffForRk4(WorldImpl& w, double t0, double h, const char* only) {
   constexpr double kLimit = 2.5;
   auto& rate = w.damping_sum;
   rate.assign(w.bodies.size(), WorldImpl::DampingSum{});
   bool any = false;
   for (const ForceEntry& f : w.forces) {
-    if (!isActive(f, t0)) continue;
+    if (!isActive(f, t0) || !selected(f, only)) continue;
     const Force::DampingRate d = f.force->dampingRate();
     if (d.linear == 0.0 && d.angular_a == 0.0 && d.angular_b == 0.0) continue;
     any = true;
@@ -100,17 +107,20 @@ bool dampingTooStiffForRk4(WorldImpl& w, double t0, double h) {
   }
   if (!any) return false;
   for (uint32_t i = 0; i < rate.size(); ++i) {
-    if (!isMoving(w, i)) continue;
+    if (!isMoving(w, i, only)) continue;
     const Body& b = w.bodies[i];
     if (h * rate[i].linear * b.inv_mass > kLimit || h * rate[i].angular * b.inv_inertia > kLimit) return true;
   }
   return false;
 }
 
-void integrateInterval(WorldImpl& w, double t0, double h) {
+}  // namespace
+
+void integrateInterval(WorldImpl& w, double t0, double h, const char* only) {
   const uint32_t n = static_cast<uint32_t>(w.bodies.size());
   bool any_force = false, any_dependent = false;
   for (const ForceEntry& f : w.forces) {
+    if (!selected(f, only)) continue;
     any_force |= isActive(f, t0);
     any_dependent |= isActive(f, t0) && f.force->dependsOnState();
   }
@@ -121,12 +131,12 @@ void integrateInterval(WorldImpl& w, double t0, double h) {
       if (w.alive[i]) w.states[i] = WorldImpl::stateOf(w.bodies[i]);
 
   std::fill(w.const_wrenches.begin(), w.const_wrenches.end(), Wrench{});
-  evaluateForces(w, t0, t0, false, w.const_wrenches);
+  evaluateForces(w, t0, t0, false, w.const_wrenches, only);
 
   // All forces at time t on the current w.states → w.wrenches.
   const auto derivative = [&](double t) {
     std::copy(w.const_wrenches.begin(), w.const_wrenches.end(), w.wrenches.begin());
-    if (any_dependent) evaluateForces(w, t0, t, true, w.wrenches);
+    if (any_dependent) evaluateForces(w, t0, t, true, w.wrenches, only);
   };
 
   // RK4 is explicit: a damper with h·c/m above 2.785 multiplies the velocity by more than 1 each
@@ -134,7 +144,7 @@ void integrateInterval(WorldImpl& w, double t0, double h) {
   // up (accuracy.md S5). Above 2.5 the interval is integrated as semi-implicit Euler with implicit
   // damping instead, which never flips or grows a velocity; counted in StepStats::rk4_handovers.
   Integrator method = w.def.integrator;
-  if (method == Integrator::RungeKutta4 && any_dependent && dampingTooStiffForRk4(w, t0, h)) {
+  if (method == Integrator::RungeKutta4 && any_dependent && dampingTooStiffForRk4(w, t0, h, only)) {
     method = Integrator::SemiImplicitEuler;
     ++w.stats.rk4_handovers;
   }
@@ -146,9 +156,9 @@ void integrateInterval(WorldImpl& w, double t0, double h) {
       const bool semi = method != Integrator::ExplicitEuler;
       // Damping (and for implicit_euler stiffness) of springs and dampers is linearly implicit
       // (implicit_solve.cpp); without such forces Δv = h a(t_n, y_n).
-      const bool implicit = implicitVelocityChange(w, t0, h, method == Integrator::ImplicitEuler);
+      const bool implicit = implicitVelocityChange(w, t0, h, method == Integrator::ImplicitEuler, only);
       for (uint32_t i = 0; i < n; ++i) {
-        if (!isMoving(w, i)) continue;
+        if (!isMoving(w, i, only)) continue;
         Body& b = w.bodies[i];
         Vec2 dv;
         double dw;
@@ -179,7 +189,7 @@ void integrateInterval(WorldImpl& w, double t0, double h) {
       if (!any_dependent) {
         // Constant acceleration over the interval: RK4 is exact, and equals this closed form.
         for (uint32_t i = 0; i < n; ++i) {
-          if (!isMoving(w, i)) continue;
+          if (!isMoving(w, i, only)) continue;
           Body& b = w.bodies[i];
           const Accel acc = accelerationOf(w, i, w.const_wrenches[i]);
           b.center += h * b.velocity + 0.5 * h * h * acc.a;
@@ -191,7 +201,7 @@ void integrateInterval(WorldImpl& w, double t0, double h) {
       }
       auto& s = w.rk4;
       for (uint32_t i = 0; i < n; ++i) {
-        if (!isMoving(w, i)) continue;
+        if (!isMoving(w, i, only)) continue;
         const Body& b = w.bodies[i];
         s.c0[i] = b.center;
         s.a0[i] = b.angle;
@@ -210,7 +220,7 @@ void integrateInterval(WorldImpl& w, double t0, double h) {
       for (int k = 0; k < 4; ++k) {
         derivative(t0 + kTime[k] * h);
         for (uint32_t i = 0; i < n; ++i) {
-          if (!isMoving(w, i)) continue;
+          if (!isMoving(w, i, only)) continue;
           const BodyState& st = w.states[i];
           const Accel acc = accelerationOf(w, i, w.wrenches[i]);
           const Vec2 kc = st.velocity;
@@ -226,7 +236,7 @@ void integrateInterval(WorldImpl& w, double t0, double h) {
         }
       }
       for (uint32_t i = 0; i < n; ++i) {
-        if (!isMoving(w, i)) continue;
+        if (!isMoving(w, i, only)) continue;
         Body& b = w.bodies[i];
         b.center = s.c0[i] + (h / 6.0) * s.dc[i];
         b.angle = s.a0[i] + (h / 6.0) * s.da[i];
@@ -240,7 +250,7 @@ void integrateInterval(WorldImpl& w, double t0, double h) {
   //   v ← v / (1 + h c)
   // which shrinks a velocity towards zero for any h c ≥ 0 and never flips it.
   for (uint32_t i = 0; i < n; ++i) {
-    if (!isMoving(w, i)) continue;
+    if (!isMoving(w, i, only)) continue;
     Body& b = w.bodies[i];
     if (b.linear_damping > 0.0) b.velocity *= 1.0 / (1.0 + h * b.linear_damping);
     if (b.angular_damping > 0.0) b.angular_velocity *= 1.0 / (1.0 + h * b.angular_damping);
@@ -248,9 +258,7 @@ void integrateInterval(WorldImpl& w, double t0, double h) {
   }
 }
 
-}  // namespace
-
-void integrate(WorldImpl& w, double dt) {
+void beginIntegration(WorldImpl& w) {
   const size_t n = w.bodies.size();
   w.states.resize(n);
   w.wrenches.resize(n);
@@ -268,25 +276,11 @@ void integrate(WorldImpl& w, double dt) {
     w.start_center[i] = w.bodies[i].center;
     w.start_angle[i] = w.bodies[i].angle;
   }
+}
 
-  // Split the step at the end times of forces that run out inside it. Without a split the interval
-  // is exactly dt (not t_end − t_begin, which rounds differently).
-  const double t_begin = w.clock.t, eps = 1e-9 * dt;
-  w.breakpoints.clear();
-  for (const ForceEntry& f : w.forces)
-    if (f.alive && f.expires_at > t_begin + eps && f.expires_at < t_begin + dt - eps) w.breakpoints.push_back(f.expires_at);
-  std::sort(w.breakpoints.begin(), w.breakpoints.end());
-
-  double t = t_begin, done = 0.0;
-  for (double stop : w.breakpoints) {
-    if (stop - t <= eps) continue;
-    integrateInterval(w, t, stop - t);
-    done += stop - t;
-    t = stop;
-  }
-  integrateInterval(w, t, dt - done);
+void moveKinematicBodies(WorldImpl& w, double dt) {
   // Kinematic bodies move by their velocity alone: exact for a constant velocity.
-  for (size_t k = 0; k < n; ++k) {
+  for (size_t k = 0; k < w.bodies.size(); ++k) {
     Body& b = w.bodies[k];
     if (!w.alive[k] || !b.isKinematic() || !b.enabled || (b.velocity == Vec2::Zero() && b.angular_velocity == 0.0)) continue;
     b.center += dt * b.velocity;

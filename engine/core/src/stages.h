@@ -8,12 +8,26 @@ namespace rigidlab {
 struct WorldImpl;
 struct Contact;
 
-void integrate(WorldImpl& w, double dt);   // integrator.cpp      origin.md §5
+// The step's time line (event_location.cpp): every body integrated over the step, split at force
+// end times and, with located impacts, at impacts (origin.md §5, §6).
+void integrate(WorldImpl& w, double dt);
+// integrator.cpp: the start-of-step states (WorldImpl::start_*) and scratch; one interval of
+// length h from time t0 with the world's integrator, for the awake dynamic bodies marked in `only`
+// (per slot; nullptr: all of them) and the forces that act on them; kinematic bodies moved by dt.
+void beginIntegration(WorldImpl& w);
+void integrateInterval(WorldImpl& w, double t0, double h, const char* only);
+void moveKinematicBodies(WorldImpl& w, double dt);
+// The contacts of located impacts after the narrow phase (event_location.cpp): a located pair
+// that is not touching waits for the next step, where its impact is located; the impacts located
+// in this step become contact events (contact_events.cpp locatedImpactEvents).
+void settleLocatedContacts(WorldImpl& w);
+void locatedImpactEvents(WorldImpl& w);
 void guardNonFinite(WorldImpl& w, const char* stage);  // nan_guard.cpp  after integrate and at the end
 void sweepFastBodies(WorldImpl& w);        // continuous.cpp      fast bodies against static ones
 // The linearly implicit Euler velocity change (implicit_solve.cpp) from the forces in w.wrenches,
-// into w.implicit.dv; false (nothing computed) if no active force can be linearised.
-bool implicitVelocityChange(WorldImpl& w, double t0, double h, bool stiffness);
+// into w.implicit.dv; false (nothing computed) if no active force can be linearised. `only`: as
+// integrateInterval's.
+bool implicitVelocityChange(WorldImpl& w, double t0, double h, bool stiffness, const char* only);
 void findPairs(WorldImpl& w);              // broad_phase.cpp     origin.md §7
 // Keeps the broad phase's pair list between steps (PairCache, broad_phase.h) for this process; on
 // by default. Off rebuilds every step: the same pairs, for tests.

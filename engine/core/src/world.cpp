@@ -4,8 +4,11 @@
 // step afterwards (Millington's scheme, origin.md §5): RK4 runs over the smooth forces without
 // contacts in its sub-stages, then the contacts found at the new positions correct the velocities
 // (restitution, friction) and finally the positions (penetration). Forces run out last, so a force
-// with a duration acts during the whole step in which it expires (the integrator splits that step at
-// the exact end time).
+// with a duration acts during the whole step in which it expires (the integration splits that step
+// at the exact end time). Going beyond the thesis, impacts of the few bodies in free flight are
+// located inside the integration (event_location.cpp): integrated to the moment of contact,
+// resolved there, and integrated on, so they never reach the contact stages as overlaps; resting
+// and persistent contacts, piles and stacks are still found and solved once per step.
 #include "rigidlab/world.h"
 
 #include <algorithm>
@@ -19,8 +22,8 @@
 namespace rigidlab {
 
 // ---------------------------------------------------------------------------------------------
-// The step: integrate → find pairs → narrow phase → pre-solve → solve contacts and joints → correct
-// positions → break joints → events and sensors → sleep → expire forces.
+// The step: integrate (and locate impacts) → find pairs → narrow phase → pre-solve → solve contacts and
+// joints → correct positions → break joints → events and sensors → sleep → expire forces.
 
 namespace {
 
@@ -68,7 +71,7 @@ void World::step(double dt) {
   const size_t incidents_before = w.incidents.size();
   const auto t0 = Clock::now();
   try {
-    integrate(w, dt);  // origin.md §5: all non-contact forces, RK4 stages included
+    integrate(w, dt);  // origin.md §5: all non-contact forces, RK4 stages included; located impacts
   } catch (...) {
     undoStep(w, incidents_before);  // forces run only here
     throw;
@@ -85,6 +88,7 @@ void World::step(double dt) {
   }
   const auto t2 = Clock::now();
   narrowPhase(w);  // origin.md §7: manifolds with feature ids; contact begin and end events
+  settleLocatedContacts(w);  // located impacts: pairs not touching wait for the next step; their events
   try {
     preSolve(w);  // one-way platforms and the pre-solve callback disable contacts for this step
   } catch (...) {
@@ -175,6 +179,13 @@ World::World(const WorldDef& def) : impl_(std::make_unique<WorldImpl>()) {
   setContactMargin(def.contact_margin);
   setSleeping(def.sleeping);
   setContinuous(def.continuous);
+  setImpacts(def.impacts);
+  if (def.impact_island_bodies < 1)
+    throw InputError("impact_island_bodies", "impact_island_bodies must be at least 1, got " + std::to_string(def.impact_island_bodies));
+  if (def.impact_max_bodies < 0)
+    throw InputError("impact_max_bodies", "impact_max_bodies must be at least 0, got " + std::to_string(def.impact_max_bodies));
+  impl_->def.impact_island_bodies = def.impact_island_bodies;
+  impl_->def.impact_max_bodies = def.impact_max_bodies;
   if (def.pair_cap < 1) throw InputError("pair_cap", "pair_cap must be at least 1, got 0");
   if (def.pair_cap_per_body < 1)
     throw InputError("pair_cap_per_body", "pair_cap_per_body must be at least 1, got " + std::to_string(def.pair_cap_per_body));
@@ -241,6 +252,10 @@ void World::setSleeping(bool on) {
 }
 
 void World::setContinuous(bool on) { impl_->def.continuous = on; }
+void World::setImpacts(ImpactHandling impacts) {
+  if (impactHandlingName(impacts).empty()) throw InputError("impacts", "unknown impact handling");
+  impl_->def.impacts = impacts;
+}
 
 
 void World::setBroadPhase(BroadPhaseKind kind) {
@@ -274,6 +289,20 @@ std::optional<ContactSolver> parseContactSolver(std::string_view name) {
 }
 
 std::string contactSolverNames() { return "auto, sequential_impulses, soft_step"; }
+
+std::string_view impactHandlingName(ImpactHandling h) {
+  switch (h) {
+    case ImpactHandling::Located: return "located";
+    case ImpactHandling::PerStep: return "per_step";
+  }
+  return {};
+}
+std::optional<ImpactHandling> parseImpactHandling(std::string_view name) {
+  for (ImpactHandling h : {ImpactHandling::Located, ImpactHandling::PerStep})
+    if (impactHandlingName(h) == name) return h;
+  return std::nullopt;
+}
+std::string impactHandlingNames() { return "located, per_step"; }
 
 std::string_view integratorName(Integrator i) {
   switch (i) {

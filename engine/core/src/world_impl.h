@@ -9,6 +9,7 @@
 #include "aabb_tree.h"
 #include "broad_phase.h"
 #include "contact.h"
+#include "impact.h"
 #include "joint.h"
 #include "manifold.h"
 #include "rigidlab/error.h"
@@ -114,6 +115,7 @@ struct WorldImpl {
     std::vector<Vec2> c0, v0, dc, dv;
     std::vector<double> a0, w0, da, dw;
   } rk4;
+  ImpactScratch impact;  // located impacts (impact.h)
 
   // The contact solver's compact working copies (contact_solver.cpp).
   std::vector<SolverBody> solver_velocities;

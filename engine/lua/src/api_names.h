@@ -64,6 +64,7 @@ inline const std::vector<std::string_view> kForceOptions = {"body", "evaluate", 
 inline const std::vector<std::string_view> kSceneOptions = {"title", "gravity", "dt", "integrator", "solver",
                                                             "iterations", "substeps", "sleeping", "duration",
                                                             "camera", "memory_limit", "expect_incidents",
+                                                            "impacts",
                                                             // rigidlab test (docs/testing.md)
                                                             "golden", "golden_every", "golden_tolerance", "skip"};
 

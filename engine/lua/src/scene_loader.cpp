@@ -104,6 +104,12 @@ void readSettings(Scene::Impl& s, WorldDef& def, const std::string& at) {
       if (!solver) o.fail("solver", "must be one of " + contactSolverNames() + ", got " + describe(o.get("solver")));
       def.contact_solver = *solver;
     }
+    if (o.has("impacts")) {
+      const std::string name = o.string("impacts");
+      const auto impacts = parseImpactHandling(name);
+      if (!impacts) o.fail("impacts", "must be one of " + impactHandlingNames() + ", got " + describe(o.get("impacts")));
+      def.impacts = *impacts;
+    }
     def.iterations = o.integer("iterations", 1, 10000, def.iterations);
     def.substeps = o.integer("substeps", 1, 64, def.substeps);
     def.sleeping = o.boolean("sleeping", def.sleeping);
