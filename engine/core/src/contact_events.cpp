@@ -69,6 +69,13 @@ void finishContactEvents(WorldImpl& w) {
       e.normal_impulse += c.points[p].step_normal_impulse;
       e.tangent_impulse += c.points[p].step_tangent_impulse;
     }
+    // An impact located inside this step that ended in this resting contact gave the pair its
+    // impulse before the contact solver ran: it is part of the step's impulse at the contact.
+    for (const LocatedImpact& li : w.impact.log)
+      if (!li.separating && li.shape_a == c.shape_a && li.shape_b == c.shape_b) {
+        e.normal_impulse += li.normal_impulse;
+        e.tangent_impulse += li.tangent_impulse;
+      }
   }
 }
 
