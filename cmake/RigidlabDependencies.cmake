@@ -5,7 +5,7 @@ find_package(Eigen3 3.4 REQUIRED NO_MODULE)
 if(RIGIDLAB_LUA)
   find_package(PkgConfig REQUIRED)
   # Debian's Lua 5.4 compiled as C++ (C-linkage symbols): a Lua error is a C++ exception, so it
-  # unwinds C++ frames with their destructors instead of longjmp-ing over them (reliability.md
+  # unwinds C++ frames with their destructors instead of longjmp-ing over them (docs/design/reliability.md
   # §1.4). sol2 is configured to match in engine/lua/CMakeLists.txt.
   pkg_check_modules(LUA REQUIRED IMPORTED_TARGET lua5.4-c++)
   find_package(sol2 3.5 REQUIRED)

@@ -1,5 +1,5 @@
 // rigidlab accuracy: error against run time for every reference problem × integrator × step size
-// (the accuracy lab, issue 5; design: accuracy.md §5). The problems are Lua scenes with Exact(t)
+// (the accuracy lab, issue 5; design: docs/design/accuracy.md §5). The problems are Lua scenes with Exact(t)
 // (scripts/accuracy/); the runs are in accuracy_run.cpp, the files in accuracy_report.cpp.
 #include <unistd.h>
 

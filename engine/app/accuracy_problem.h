@@ -19,7 +19,7 @@
 
 namespace rigidlab::app::accuracy {
 
-// What the report does with a problem (README "group").
+// What the report does with a problem (scripts/accuracy/README.md, "group").
 enum class Group {
   Smooth,   // no contacts: the order is fitted and gated
   Impact,   // isolated impacts, located inside the step (ImpactHandling::Located): fitted and gated
@@ -69,7 +69,7 @@ std::vector<std::filesystem::path> problemFiles(const std::filesystem::path& dir
 // The default reference problems: scripts/accuracy/.
 std::filesystem::path problemDirectory();
 
-// Default expectations (accuracy.md §2): euler 1, semi_implicit_euler 1, rk4 4, implicit_euler 1.
+// Default expectations (docs/design/accuracy.md §2): euler 1, semi_implicit_euler 1, rk4 4, implicit_euler 1.
 std::optional<double> defaultOrder(const std::string& integrator);
 
 }  // namespace rigidlab::app::accuracy

@@ -179,7 +179,7 @@ Verdict judge(const Problem& problem, const std::string& integrator, const std::
     bool all_ok = true;
     for (const Row* r : rows) {
       all_ok &= r->error.status == "ok";
-      // Round-off grows with the number of steps: |err| ≤ 16 N ε (accuracy.md §3.1 uses 4 N ε |y|).
+      // Round-off grows with the number of steps: |err| ≤ 16 N ε (docs/design/accuracy.md §3.1 uses 4 N ε |y|).
       const double bound = 16.0 * static_cast<double>(r->steps_planned) * kEps;
       worst = std::max(worst, r->error.err_linf);
       worst_ratio = std::max(worst_ratio, r->error.err_linf / bound);

@@ -1,5 +1,5 @@
 // The accuracy report: rows of the sweep, the order fit, and the files written from them —
-// accuracy.csv (the contract, columns of accuracy.md §5 plus a few at the end), energy_<problem>.csv,
+// accuracy.csv (the contract, columns of docs/design/accuracy.md §5 plus a few at the end), energy_<problem>.csv,
 // summary.md, and gnuplot pictures generated from the CSV (plots.gp, re-runnable by hand).
 #pragma once
 
@@ -35,7 +35,7 @@ struct Row {
 };
 
 // The observed order on one problem for one integrator: a least-squares fit of log err against
-// log dt over the asymptotic window (accuracy.md §5): points of status ok with
+// log dt over the asymptotic window (docs/design/accuracy.md §5): points of status ok with
 // max(1e3 ε, 100 N ε) < err_linf < 0.1, where N is the run's step count (round-off grows with N).
 struct Fit {
   int points = 0;  // in the window; the fit needs 2
@@ -58,7 +58,7 @@ struct Verdict {
 };
 Verdict judge(const Problem& problem, const std::string& integrator, const std::vector<const Row*>& rows);
 
-// Order tolerance around an expected order (accuracy.md §5: ±0.2, RK4 ±0.3).
+// Order tolerance around an expected order (docs/design/accuracy.md §5: ±0.2, RK4 ±0.3).
 double orderTolerance(double expected);
 
 struct LongRun {

@@ -1,4 +1,4 @@
-// Running one configuration (problem × integrator × dt) of the accuracy lab, after accuracy.md §5
+// Running one configuration (problem × integrator × dt) of the accuracy lab, after docs/design/accuracy.md §5
 // and DiffEqDevTools' benchmark.jl:
 //
 //   error pass   one run with sampling on: every sample_dt the positions (and the metrics the
@@ -18,7 +18,7 @@
 
 namespace rigidlab::app::accuracy {
 
-// Step sizes of the sweep: dt_k = 1/30 · 2^−k, k = 0 … k_max (accuracy.md §5).
+// Step sizes of the sweep: dt_k = 1/30 · 2^−k, k = 0 … k_max (docs/design/accuracy.md §5).
 double sweepDt(int k);
 
 // Steps for `duration` at `dt`: N with |N dt − duration| ≤ 1e-9 duration, else std::runtime_error.

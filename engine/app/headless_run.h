@@ -11,7 +11,7 @@
 
 namespace rigidlab::app {
 
-// The most steps one run may take (README "Security"): about 10 s of an empty world's steps, and
+// The most steps one run may take (docs/security.md): about 10 s of an empty world's steps, and
 // 46 hours of simulated time at 1/60 s. dt = 1e-12 with --time 1 would otherwise ask for 1e12.
 inline constexpr long kMaxRunSteps = 10000000;
 

@@ -1,5 +1,5 @@
 // Stability cases on springs, dampers and long runs, and frame-rate independence
-// (accuracy.md §4: S1–S6, S9, S11). Parameters and expected figures are the document's.
+// (docs/design/accuracy.md §4: S1–S6, S9, S11). Parameters and expected figures are the document's.
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -16,7 +16,7 @@
 namespace rigidlab::app::stability {
 namespace {
 
-constexpr double kDt = 1.0 / 60.0;  // [s] every case runs at 60 Hz (accuracy.md §4)
+constexpr double kDt = 1.0 / 60.0;  // [s] every case runs at 60 Hz (docs/design/accuracy.md §4)
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 std::optional<Integrator> find(const std::string& name) { return parseIntegrator(name); }

@@ -1,4 +1,4 @@
-// The stiff and extreme cases of `rigidlab stability` (accuracy.md §4, S1–S11). Each case builds its
+// The stiff and extreme cases of `rigidlab stability` (docs/design/accuracy.md §4, S1–S11). Each case builds its
 // worlds in C++ (or loads a reference problem from scripts/accuracy/), runs them, and returns its
 // figures and a PASS/FAIL against a rule stated in the case. `quick` selects the short versions
 // that ctest runs (fewer steps, same rules).

@@ -1,4 +1,4 @@
-// rigidlab stability: the stiff and extreme cases (accuracy.md §4, issue 5), each with a pass/fail
+// rigidlab stability: the stiff and extreme cases (docs/design/accuracy.md §4, issue 5), each with a pass/fail
 // rule and its figures, written as stability.json and stability.md. The cases are in
 // stability_cases.cpp and stability_contact_cases.cpp.
 #include <unistd.h>
@@ -24,7 +24,7 @@ using namespace stability;
 std::string help() {
   std::string h = R"(usage: rigidlab stability [--out DIR] [--cases A,B,...] [--quick]
 
-Runs the stiff and extreme cases (accuracy.md section 4), each with a pass/fail rule, and writes
+Runs the stiff and extreme cases (docs/design/accuracy.md section 4), each with a pass/fail rule, and writes
 DIR/stability.json and DIR/stability.md (default DIR: stability-report) with every case's figures
 and PASS/FAIL. A line per case on standard output.
 

@@ -1,4 +1,4 @@
-// Stability cases with contacts (accuracy.md §4: S7, S8, S10 and the stress cases of issue 5):
+// Stability cases with contacts (docs/design/accuracy.md §4: S7, S8, S10 and the stress cases of issue 5):
 // mass ratios, a tall stack, a pyramid, fast bodies against a thin wall, deep overlaps, and scale.
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
--- A ball dropped from a gap h0 = 1 m onto a floor with restitution e = 0.8 (accuracy.md §3.12).
+-- A ball dropped from a gap h0 = 1 m onto a floor with restitution e = 0.8 (docs/design/accuracy.md §3.12).
 -- First impact at t1 = √(2 h0/g) = 0.4516007558 s at 4.4286905514 m/s; after bounce n the apex is
 -- e^{2n} h0 (0.64 m after the first); the second impact is at 1.1741619650 s. Each impact is
 -- located inside its step (impacts = "located"); with impacts handled once per step the error was

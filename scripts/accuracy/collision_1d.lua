@@ -1,4 +1,4 @@
--- Head-on collisions of discs with restitution (accuracy.md §3.10): m1 = 1 kg at +2 m/s meets
+-- Head-on collisions of discs with restitution (docs/design/accuracy.md §3.10): m1 = 1 kg at +2 m/s meets
 -- m2 = 3 kg at −1 m/s (total momentum −1 kg·m/s, 3.5 J). Newton's law along the normal gives
 --   e = 1:   v1' = −2.5,   v2' = 0.5    (3.5 J kept)
 --   e = 0.5: v1' = −1.375, v2' = 0.125  (2.53125 J lost)

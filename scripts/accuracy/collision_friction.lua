@@ -1,4 +1,4 @@
--- The thesis's frictional impact (origin.md §12 experiment 1, accuracy.md §3.11) and a stick-regime
+-- The thesis's frictional impact (docs/design/thesis.md §12 experiment 1, docs/design/accuracy.md §3.11) and a stick-regime
 -- variant. Unit-mass solid discs of r = 2 m (I = 2 kg·m²), e = 1, μ = 0.5, no gravity; A at rest,
 -- B moving at (−1, 0) m/s, spinning at ω_B; they touch at t = 1 s with n = (1, 0) from A to B.
 --   sliding (ω_B = 2 rad/s): slip 4 m/s needs 2/3 N·s > μ j_n = 0.5, so j_t = 0.5:

@@ -1,4 +1,4 @@
--- Oblique frictionless impact of equal discs (accuracy.md §3.10): m = 1 kg, r = 1 m; A at rest, B
+-- Oblique frictionless impact of equal discs (docs/design/accuracy.md §3.10): m = 1 kg, r = 1 m; A at rest, B
 -- moving at (2, 0) m/s along a line 1 m off A's centre (impact parameter = half the sum of the
 -- radii), so at the impact the normal from A to B is n = (−√3/2, ½). With j = (1 + e) √3/2:
 --   e = 1:   vB' = (0.5, 0.866025), vA' = (1.5, −0.866025), 2 J kept, vA' ⊥ vB'

@@ -1,4 +1,4 @@
--- Critically damped spring–mass, F = −k x − c v (accuracy.md §3.4), m = 1 kg, k = 4π² N/m, x0 = 0.1 m,
+-- Critically damped spring–mass, F = −k x − c v (docs/design/accuracy.md §3.4), m = 1 kg, k = 4π² N/m, x0 = 0.1 m,
 -- v0 = 0, c = 2 ζ √(k m) with ζ = 1, x(1) = 1.3600931466e−3.
 --   ζ < 1: x = e^{−ζω₀t} [x0 cos ω_d t + ((v0 + ζω₀x0)/ω_d) sin ω_d t],  ω_d = ω₀ √(1 − ζ²)
 --   ζ = 1: x = [x0 + (v0 + ω₀x0) t] e^{−ω₀t}

@@ -1,4 +1,4 @@
--- A solid disc launched sliding on a flat floor starts to roll (accuracy.md §3.9): m = 1 kg,
+-- A solid disc launched sliding on a flat floor starts to roll (docs/design/accuracy.md §3.9): m = 1 kg,
 -- r = 0.5 m, v0 = 6 m/s, ω0 = 0, μ = 0.3. Friction gives v = v0 − μ g t and ω r = 2 μ g t (ω < 0,
 -- clockwise, for motion to the right) until rolling starts at t* = v0/(3 μ g) = 0.6798108087 s with
 -- v_f = 2 v0/3 = 4 m/s and |ω_f| = v_f/r = 8 rad/s; 6 J of the 18 J are lost to friction.

@@ -1,4 +1,4 @@
--- Projectile with linear drag F = −b v (accuracy.md §3.2), the built-in damper. With τ = m/b:
+-- Projectile with linear drag F = −b v (docs/design/accuracy.md §3.2), the built-in damper. With τ = m/b:
 --   x(t) = v0x τ (1 − e^{−t/τ}),   y(t) = τ (v0y + g τ)(1 − e^{−t/τ}) − g τ t
 -- m = 1 kg, b = 0.5 N·s/m (τ = 2 s), v0 = (20, 20) m/s: x(2) = 25.2848223531, y(2) = 10.8541626661.
 scene = { sleeping = false, title = "Projectile with linear drag", dt = 1 / 60, duration = 3, camera = { center = {15, 5}, height = 20 } }

@@ -1,4 +1,4 @@
--- Free fall from rest (accuracy.md §3.1, the thesis's Table 4.1): y(t) = −½ g t².
+-- Free fall from rest (docs/design/accuracy.md §3.1, the thesis's Table 4.1): y(t) = −½ g t².
 -- A round-off sanity check, not an order fit: explicit Euler gives −½gT(T − h), semi-implicit Euler
 -- −½gT(T + h) (error ½gTh, order 1), RK4 is exact for constant acceleration (round-off only).
 scene = { sleeping = false, title = "Free fall", dt = 1 / 60, duration = 10, camera = { center = {0, -245}, height = 520 } }

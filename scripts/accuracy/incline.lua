@@ -1,4 +1,4 @@
--- A block sliding down a 30° incline with Coulomb friction μ = 0.2 (accuracy.md §3.8). Released at
+-- A block sliding down a 30° incline with Coulomb friction μ = 0.2 (docs/design/accuracy.md §3.8). Released at
 -- rest; tan 30° = 0.577 > μ, so it slides with a = g (sin θ − μ cos θ) = 3.2047633948 m/s² and
 -- s(t) = ½ a t²: s(2) = 6.4095267896 m down the slope. Contacts are handled once per step, so the
 -- error is O(h) whatever the integrator (semi-implicit Euler ideally ½ a t (t + h)).

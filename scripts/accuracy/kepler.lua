@@ -1,4 +1,4 @@
--- Kepler orbit under a central force written in Lua (accuracy.md §3.6): F = −GM m r/|r|³ toward a
+-- Kepler orbit under a central force written in Lua (docs/design/accuracy.md §3.6): F = −GM m r/|r|³ toward a
 -- fixed attractor at the origin. a = 1 m, e = 0.6, period P = 10 s, so GM = 4π²a³/P² =
 -- 0.3947841760435743 m³/s²; r0 = (a(1 − e), 0) = (0.4, 0), v0 = (0, √(GM (1 + e)/(a (1 − e)))) =
 -- (0, 2π/5). Exact positions from Kepler's equation E − e sin E = 2πt/P:

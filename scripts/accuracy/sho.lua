@@ -1,4 +1,4 @@
--- Undamped spring–mass, Hooke F = −k x (accuracy.md §3.3): x(t) = x0 cos ωt + (v0/ω) sin ωt.
+-- Undamped spring–mass, Hooke F = −k x (docs/design/accuracy.md §3.3): x(t) = x0 cos ωt + (v0/ω) sin ωt.
 -- m = 1 kg, k = 4π² N/m (1 Hz), x0 = 0.1 m, v0 = 0, T = 10.1 s (off the special phases where
 -- semi-implicit Euler's final-time error looks second order). Exact: x(10.1) = 0.0809016994374951.
 -- The spring runs from a fixed anchor at the origin with rest length 0, so F = −k x in the plane.

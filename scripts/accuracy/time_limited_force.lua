@@ -1,4 +1,4 @@
--- A force that acts for a limited time (accuracy.md §3.7, with t_off = 1.04 s instead of 1.05 s):
+-- A force that acts for a limited time (docs/design/accuracy.md §3.7, with t_off = 1.04 s instead of 1.05 s):
 -- F = 10 N on m = 2 kg for 0 ≤ t < 1.04 s, then nothing; x(2) = ½ (F/m) t_off² + (F t_off/m)(2 − t_off)
 -- = 7.696 m, v = 5.2 m/s. 1.04 s is on none of the sweep's step grids (1.04 · 30 · 2^k is never a
 -- whole number), so every run has a step that straddles the end time; 1.05 s would be on the grid

@@ -1,4 +1,4 @@
--- The pitfall of accuracy.md §3.7: the same force as time_limited_force.lua (10 N on 2 kg until
+-- The pitfall of docs/design/accuracy.md §3.7: the same force as time_limited_force.lua (10 N on 2 kg until
 -- t = 1.04 s), but switched off by its own `evaluate` when `s.time` reaches 1.04 s instead of
 -- through `duration`. The integrator does not know the force has a discontinuity, so a step that
 -- contains it sees the wrong force for part of the step and every integrator, RK4 included, is

@@ -1,4 +1,4 @@
--- Two bodies joined by a spring, both free (accuracy.md §3.5): m1 = 1 kg at x = 0, m2 = 3 kg at
+-- Two bodies joined by a spring, both free (docs/design/accuracy.md §3.5): m1 = 1 kg at x = 0, m2 = 3 kg at
 -- x = 1.2 m, k = 100 N/m, rest length 1 m, at rest. Reduced mass μ = 0.75 kg, ω = √(k/μ) =
 -- 11.5470053838 rad/s. The separation is s(t) = 1 + 0.2 cos ωt about the fixed centre of mass
 -- x_cm = 0.9 m: x1 = x_cm − (m2/M) s, x2 = x_cm + (m1/M) s; x1(1) = 0.0714139893, x2(1) = 1.1761953369.

@@ -1,7 +1,7 @@
--- Experiment 1 of the thesis (origin.md §12.1): a spinning circle hits a resting one.
+-- Experiment 1 of the thesis (docs/design/thesis.md §12.1): a spinning circle hits a resting one.
 -- Two discs of 1 kg and radius 2 m, no gravity, restitution 1, dynamic friction 0.5. A rests at
 -- the origin; B comes from the right at 1 m/s spinning at 2 rad/s. The contact slides through
--- the whole impact, so friction takes its full value f·j_n (accuracy.md §3.11).
+-- the whole impact, so friction takes its full value f·j_n (docs/design/accuracy.md §3.11).
 -- Published: v'A = (-1, -0.5), v'B = (0, 0.5); the same impulses give ω'A = -0.5, ω'B = 1.5 rad/s.
 local check = require "check"
 

@@ -1,4 +1,4 @@
--- Experiment 2 of the thesis (origin.md §12.2): a square dropped on a floor, tilted so that it spins
+-- Experiment 2 of the thesis (docs/design/thesis.md §12.2): a square dropped on a floor, tilted so that it spins
 -- after the impact; restitution 1 and no friction, so the total energy
 --     E = m g h + ½ (m v² + I ω²)
 -- should stay constant while potential, linear and rotational energy trade (the thesis's Fig. 5.3,

@@ -1,7 +1,7 @@
--- Experiment 3 of the thesis (origin.md §12.3): four squares dropped on an inclined plane, each with
+-- Experiment 3 of the thesis (docs/design/thesis.md §12.3): four squares dropped on an inclined plane, each with
 -- a different dynamic friction. The one with the lowest friction slides fastest; the one whose
 -- friction exceeds the slope's tangent stops soon after landing. While sliding, a square's
--- acceleration along the slope is a = g (sin θ − f cos θ) (origin.md §1, §10).
+-- acceleration along the slope is a = g (sin θ − f cos θ) (docs/design/thesis.md §1, §10).
 local check = require "check"
 
 local theta = math.rad(25)                   -- tan 25° = 0.466

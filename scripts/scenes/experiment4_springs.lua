@@ -1,11 +1,11 @@
--- Experiment 4 of the thesis (origin.md §12.4): springs. All weights are 3 kg and start displaced.
+-- Experiment 4 of the thesis (docs/design/thesis.md §12.4): springs. All weights are 3 kg and start displaced.
 --   A      an undamped spring                         keeps oscillating with its initial amplitude
 --   B      a damped spring                            comes to rest at its equilibrium
 --   C, D   two undamped springs holding one weight    keeps oscillating with its initial amplitude
 --   E,F,G  three damped springs whose weights carry   all come to rest
 --          the rectangle O (hung from them on short
 --          damped springs)
--- Hooke's law F = −k x (origin.md §1, §4); as in the thesis a damped spring's weight also carries a
+-- Hooke's law F = −k x (docs/design/thesis.md §1, §4); as in the thesis a damped spring's weight also carries a
 -- damper F = −c v, which calms sideways swinging too (damping along the spring alone would not).
 -- A hanging weight's equilibrium stretch is m g / k; released from rest, an undamped weight turns
 -- around at its starting height every period.

@@ -1,4 +1,4 @@
--- Free fall for 10 s from y = 0 (the thesis's Table 4.1, origin.md §5). Run it with any integrator
+-- Free fall for 10 s from y = 0 (the thesis's Table 4.1, docs/design/thesis.md §5). Run it with any integrator
 -- and step; the Check knows what each must give:
 --   RK4                   exact for constant acceleration: y = −½ g T², round-off only
 --   explicit Euler        y_N = −½ g T (T − h)   (the thesis's "Euler" column)
@@ -27,7 +27,7 @@ function Check(world)
   local y = world:find("ball").position.y
   local expected, tolerance
   if world.integrator == "rk4" then
-    -- Round-off grows with the number of steps: |err| ≤ 4 N ε |y| (accuracy.md §3.1).
+    -- Round-off grows with the number of steps: |err| ≤ 4 N ε |y| (docs/design/accuracy.md §3.1).
     expected, tolerance = -0.5 * g * T * T, math.max(1e-9, 4 * (T / h) * 2.2e-16 * 490.3325)
   elseif world.integrator == "euler" then
     expected, tolerance = -0.5 * g * T * (T - h), 1e-6

@@ -2,7 +2,7 @@
 -- friction. The first ball is pulled 30° aside and released; it stops at impact and the last ball
 -- swings out to the same height. The balls hang 2 cm apart, more than a ball travels in one step
 -- (2.3 m/s × 1/240 s ≈ 1 cm), so the collisions are a sequence of two-ball impacts, the case a
--- sequential-impulse solver gets right (accuracy.md §3.10); touching balls would meet all at once.
+-- sequential-impulse solver gets right (docs/design/accuracy.md §3.10); touching balls would meet all at once.
 local check = require "check"
 
 local n, radius, length, gap = 5, 0.25, 2.0, 0.02

@@ -1,5 +1,5 @@
 -- A pyramid of 1 m boxes, base 10 (55 boxes), standing on static ground for 10 s. The thesis names
--- stacks as the weak spot of linear projection (origin.md §9, §13); the Check holds the pyramid to
+-- stacks as the weak spot of linear projection (docs/design/thesis.md §9, §13); the Check holds the pyramid to
 -- millimetres: every box stays where it was built and the top box stays on top.
 local check = require "check"
 

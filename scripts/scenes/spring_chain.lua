@@ -1,7 +1,7 @@
 -- A chain of five 1 kg balls joined by damped springs, hanging from a fixed anchor. Released with
 -- every spring at its rest length, the chain stretches, oscillates and settles. At rest, spring i
 -- (counted from the top) carries the weight of the balls below it, so its stretch is
--- (n − i + 1) m g / k (Hooke, origin.md §1); the Check compares every spring with that.
+-- (n − i + 1) m g / k (Hooke, docs/design/thesis.md §1); the Check compares every spring with that.
 local check = require "check"
 
 local n, m, k, rest, g = 5, 1.0, 200.0, 0.5, 9.80665

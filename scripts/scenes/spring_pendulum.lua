@@ -1,7 +1,7 @@
 -- A spring pendulum (elastic pendulum): a 1 kg ball on an undamped spring from a fixed anchor,
 -- swinging and bouncing under gravity. Nothing dissipates, so the total energy (kinetic, gravity,
 -- spring) is conserved; with RK4 at 60 Hz the integrator's own loss is tiny (a⁶/72 per step for
--- a = ωh = 0.12, accuracy.md §2). The energy is printed every second.
+-- a = ωh = 0.12, docs/design/accuracy.md §2). The energy is printed every second.
 local check = require "check"
 
 scene = { title = "Spring pendulum", duration = 20, integrator = "rk4", camera = { center = {0, 1}, height = 7 } }

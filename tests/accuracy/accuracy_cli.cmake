@@ -1,6 +1,6 @@
 # cmake -DRIGIDLAB=<binary> -DWORK=<scratch dir> -P accuracy_cli.cmake
 # The accuracy and stability commands' command lines: help, usage errors, the files a small report
-# writes (CSV columns of accuracy.md §5, summary, pictures when gnuplot is installed), and the
+# writes (CSV columns of docs/design/accuracy.md §5, summary, pictures when gnuplot is installed), and the
 # stability report's JSON.
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
@@ -25,7 +25,7 @@ if(NOT lines EQUAL 21)  # header + 2 problems × 2 integrators × 5 step sizes
   message(FATAL_ERROR "accuracy.csv: ${lines} lines, expected 21")
 endif()
 list(GET csv 0 header)
-expect_match("CSV columns (accuracy.md §5)" "${header}"
+expect_match("CSV columns (docs/design/accuracy.md §5)" "${header}"
   "^scene,integrator,dt,substeps,steps,force_evals,lua_calls,t_end,wall_s_min,wall_s_median,repeats,err_linf,err_final,err_l2,energy_drift_max,energy_drift_trend,mom_err,angmom_err,order_pairwise,status,engine_version,git_hash,build,cpu,")
 list(GET csv 7 row)  # rows: sho semi ×5, sho rk4 ×5, kepler semi ×5, kepler rk4 ×5
 expect_match("sho rk4 at 1/60: 606 steps, 4 force evaluations each, no Lua" "${row}" "^sho,rk4,0.016666666666666666,1,606,2424,0,10.1,")

@@ -1,4 +1,4 @@
-// Frame-rate independence (accuracy.md §4 S11): the sandbox's default scene driven through the
+// Frame-rate independence (docs/design/accuracy.md §4 S11): the sandbox's default scene driven through the
 // sandbox's own fixed-step accumulator (FrameClock::plan, engine/sandbox/src/frame_clock.cpp)
 // reaches the same simulated time with the same number of steps and a bit-identical state whether
 // the frames take 1/30, 1/60 or 1/144 s; the variable-step loop does not (the control that shows

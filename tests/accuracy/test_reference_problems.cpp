@@ -1,4 +1,4 @@
-// Gates of the accuracy lab on the reference problems of scripts/accuracy/ (accuracy.md §5, "CI
+// Gates of the accuracy lab on the reference problems of scripts/accuracy/ (docs/design/accuracy.md §5, "CI
 // gates"): deterministic, never timings.
 //   1. the observed order of every integrator on the smooth and sanity problems is its expected one
 //      (euler 1, semi_implicit_euler 1, rk4 4, implicit_euler 1, within ±0.2, ±0.3 for 4; "exact"
@@ -163,7 +163,7 @@ TEST_CASE("invariants: momentum under pair forces and impacts, the orbit's angul
   };
   for (const std::string& integrator : integrators()) {
     CAPTURE(integrator);
-    // Pair forces and contact impulses are equal and opposite: momentum to round-off (accuracy.md §3.5, §3.10).
+    // Pair forces and contact impulses are equal and opposite: momentum to round-off (docs/design/accuracy.md §3.5, §3.10).
     for (const char* name : {"two_body_spring", "collision_1d", "collision_oblique", "collision_friction"}) {
       CAPTURE(name);
       CHECK(run(name, integrator).mom_err <= 1e-12);
@@ -171,7 +171,7 @@ TEST_CASE("invariants: momentum under pair forces and impacts, the orbit's angul
     // Head-on impacts: the velocities after the impact are Newton's law to round-off.
     CHECK(run("collision_1d", integrator).vel_err_final <= 1e-9);
   }
-  // Semi-implicit Euler keeps a central force's angular momentum exactly (accuracy.md §3.6):
+  // Semi-implicit Euler keeps a central force's angular momentum exactly (docs/design/accuracy.md §3.6):
   // L' = x' × v' = (x + h v') × v' = x × v + h x × a(x) = x × v.
   const ErrorPass semi = run("kepler", "semi_implicit_euler");
   CHECK(semi.angmom_err <= 1e-12);

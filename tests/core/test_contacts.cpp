@@ -1,4 +1,4 @@
-// Contact solver and position correction (origin.md §8–10, §12 experiment 1; accuracy.md §3.8–3.12).
+// Contact solver and position correction (docs/design/thesis.md §8–10, §12 experiment 1; docs/design/accuracy.md §3.8–3.12).
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -25,9 +25,9 @@ BodyId addDisc(World& w, Vec2 position, Vec2 velocity, double omega, double rest
 
 }  // namespace
 
-TEST_CASE("experiment 1 (origin.md §12): a spinning circle hits a resting one, sliding friction") {
+TEST_CASE("experiment 1 (docs/design/thesis.md §12): a spinning circle hits a resting one, sliding friction") {
   // A at rest at the origin; B at (4, 0) touching it, v = (−1, 0), ω = 2; no gravity; e = 1,
-  // f = 0.5. The contact slides through the whole impact (accuracy.md §3.11). A tiny step keeps
+  // f = 0.5. The contact slides through the whole impact (docs/design/accuracy.md §3.11). A tiny step keeps
   // the overlap at detection (and so the lever arms' error) at 1e-6 m.
   World w;
   w.setGravity(Vec2::Zero());
@@ -50,7 +50,7 @@ TEST_CASE("experiment 1 (origin.md §12): a spinning circle hits a resting one, 
 }
 
 TEST_CASE("experiment 1, stick regime: the friction impulse that stops slip, through the inertia") {
-  // ω_B = 0.5: slip 1 m/s; the stopping impulse 1/6 is below f·j_n = 0.5 (accuracy.md §3.11).
+  // ω_B = 0.5: slip 1 m/s; the stopping impulse 1/6 is below f·j_n = 0.5 (docs/design/accuracy.md §3.11).
   World w;
   w.setGravity(Vec2::Zero());
   const BodyId a = addDisc(w, {0, 0}, {0, 0}, 0.0, 1.0, 0.5);
@@ -65,7 +65,7 @@ TEST_CASE("experiment 1, stick regime: the friction impulse that stops slip, thr
   CHECK(B.angular_velocity == Approx(1.0 / 3.0).epsilon(1e-6));
 }
 
-TEST_CASE("1D collisions with restitution (Newton's law, accuracy.md §3.10)") {
+TEST_CASE("1D collisions with restitution (Newton's law, docs/design/accuracy.md §3.10)") {
   struct Case {
     double e, v1, v2;
   };
@@ -163,7 +163,7 @@ TEST_CASE("impulses: accumulated normal impulses are ≥ 0 and friction stays in
   CHECK(w.body(top).position().y() == Approx(3.5).epsilon(1e-3));
 }
 
-TEST_CASE("static and dynamic friction on a 30° incline (origin.md §10, accuracy.md §3.8)") {
+TEST_CASE("static and dynamic friction on a 30° incline (docs/design/thesis.md §10, docs/design/accuracy.md §3.8)") {
   const double theta = std::numbers::pi / 6.0;
   const auto slide = [&](double f_static, double f_dynamic, double seconds, bool displacement = true) {
     World w;
@@ -222,7 +222,7 @@ TEST_CASE("restitution: the bouncing ball reaches e² h0 within v·h, slow conta
     if (bounced) apex = std::max(apex, w.body(id).position().y() - 0.1);
   }
   REQUIRE(bounced);
-  CHECK(std::abs(apex - 0.64) <= 4.4286905514 / 60.0);  // accuracy.md §3.12 gate without TOI
+  CHECK(std::abs(apex - 0.64) <= 4.4286905514 / 60.0);  // docs/design/accuracy.md §3.12 gate without TOI
 
   // Dropped from 2 mm, the ball meets the floor at 0.2 m/s, below the restitution threshold.
   World calm;
@@ -291,7 +291,7 @@ TEST_CASE("a two-point contact solved as a block keeps a resting box level") {
   CHECK(std::abs(w.body(box).position().x()) < 1e-12);
 }
 
-TEST_CASE("continuous collision: fast bodies do not tunnel through a thin static wall (accuracy.md S8)") {
+TEST_CASE("continuous collision: fast bodies do not tunnel through a thin static wall (docs/design/accuracy.md S8)") {
   struct Case {
     double speed;
     bool circle;
@@ -399,7 +399,7 @@ TEST_CASE("continuous collision: walls added, moved or made static after the fir
   }
 }
 
-TEST_CASE("mass ratios: heavy boxes on a 1 kg box hold with sub-centimetre penetration (accuracy.md S7)") {
+TEST_CASE("mass ratios: heavy boxes on a 1 kg box hold with sub-centimetre penetration (docs/design/accuracy.md S7)") {
   for (double heavy : {10.0, 100.0, 1000.0}) {
     CAPTURE(heavy);
     World w;

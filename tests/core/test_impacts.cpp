@@ -53,7 +53,7 @@ uint64_t stateHash(const World& w) {
 
 }  // namespace
 
-TEST_CASE("located impacts: a bouncing ball's impact times, impact speeds and apex heights over 10 bounces at 1/60 (accuracy.md §3.12)") {
+TEST_CASE("located impacts: a bouncing ball's impact times, impact speeds and apex heights over 10 bounces at 1/60 (docs/design/accuracy.md §3.12)") {
   const double h0 = 1.0, r = 0.1;
   for (double e : {1.0, 0.8}) {
     CAPTURE(e);

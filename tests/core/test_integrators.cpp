@@ -1,4 +1,4 @@
-// Integrators (origin.md §5, accuracy.md §2–3): Table 4.1, energy behaviour on a spring, observed
+// Integrators (docs/design/thesis.md §5, docs/design/accuracy.md §2–3): Table 4.1, energy behaviour on a spring, observed
 // orders of convergence, RK4 force evaluation at every stage, time-limited forces.
 #include <doctest/doctest.h>
 
@@ -25,7 +25,7 @@ double freeFallY(Integrator integrator, double dt, double duration) {
   return w.body(ball).center.y();
 }
 
-// Undamped oscillator k = 4π² N/m, m = 1 kg, x0 = 0.1 m (accuracy.md §3.3), spring written as a
+// Undamped oscillator k = 4π² N/m, m = 1 kg, x0 = 0.1 m (docs/design/accuracy.md §3.3), spring written as a
 // user-defined Force. Returns the maximum position error over the 0.1 s sample grid up to
 // T = 10.1 s, relative to x0.
 double oscillatorError(Integrator integrator, double dt, std::unique_ptr<Force> force) {
@@ -46,7 +46,7 @@ double oscillatorError(Integrator integrator, double dt, std::unique_ptr<Force> 
 }
 
 // Wraps a force and samples it only once per step (at the first RK4 stage), reusing that value
-// for the other three stages: the mistake accuracy.md §0.6 warns about.
+// for the other three stages: the mistake docs/design/accuracy.md §0.6 warns about.
 class SampledOncePerStep final : public Force {
  public:
   explicit SampledOncePerStep(std::unique_ptr<Force> inner) : inner_(std::move(inner)) {}
@@ -91,12 +91,12 @@ TEST_CASE("Table 4.1: free fall for 10 s from y0 = 0") {
   CHECK(std::abs(freeFallY(Integrator::ExplicitEuler, 0.1, 10.0) - (-485.429175)) < 1e-6);
   CHECK(std::abs(freeFallY(Integrator::ExplicitEuler, 0.01, 10.0) - (-489.8421675)) < 1e-6);
   CHECK(std::abs(freeFallY(Integrator::ExplicitEuler, 0.001, 10.0) - (-490.28346675)) < 1e-6);
-  // Semi-implicit Euler: y_N = −½ g T (T + h) (accuracy.md §3.1).
+  // Semi-implicit Euler: y_N = −½ g T (T + h) (docs/design/accuracy.md §3.1).
   CHECK(std::abs(freeFallY(Integrator::SemiImplicitEuler, 0.1, 10.0) - (-0.5 * kG * 10.0 * 10.1)) < 1e-9);
 }
 
 TEST_CASE("undamped spring: semi-implicit Euler keeps energy in its band for 100 periods") {
-  // Band for v0 = 0: E/E0 ∈ [1/(1 + a/2), 1/(1 − a/2)], a = ωh (accuracy.md §2).
+  // Band for v0 = 0: E/E0 ∈ [1/(1 + a/2), 1/(1 − a/2)], a = ωh (docs/design/accuracy.md §2).
   const double k = 4.0 * pi * pi, h = 1.0 / 60.0, a = 2.0 * pi * h;
   World w;
   w.setGravity(Vec2::Zero());
@@ -110,7 +110,7 @@ TEST_CASE("undamped spring: semi-implicit Euler keeps energy in its band for 100
   w.addSpring(spring);
   const double e0 = w.kineticEnergy() + w.potentialEnergy();
   CHECK(e0 == doctest::Approx(0.5 * k * 0.01).epsilon(1e-14));
-  // Semi-implicit Euler conserves Q = v² + ω²x² − h ω² x v exactly (accuracy.md §2): no drift.
+  // Semi-implicit Euler conserves Q = v² + ω²x² − h ω² x v exactly (docs/design/accuracy.md §2): no drift.
   const auto invariant = [&] {
     const double x = w.body(body).center.x(), v = w.body(body).velocity.x();
     return v * v + k * x * x - h * k * x * v;
@@ -202,7 +202,7 @@ TEST_CASE("damper: RK4 follows v(t) = v0 e^(−c t / m)") {
 }
 
 TEST_CASE("time-limited force: acts for exactly its duration, then is removed at the end of the step") {
-  // F = 10 N on 2 kg for 1.05 s; at t = 2 s: x = 7.74375 m, v = 5.25 m/s (accuracy.md §3.7).
+  // F = 10 N on 2 kg for 1.05 s; at t = 2 s: x = 7.74375 m, v = 5.25 m/s (docs/design/accuracy.md §3.7).
   // dt = 0.1 puts the cut-off inside step 11, which the integrator splits at t = 1.05.
   World w;
   w.setGravity(Vec2::Zero());
@@ -239,7 +239,7 @@ TEST_CASE("two-body spring: momentum conserved by every integrator; RK4 matches 
     CHECK(std::abs(p.x()) < 1e-12);
     CHECK(std::abs(p.y() - 1.5) < 1e-12);
   }
-  // Along the axis only: s(t) = L0 + 0.2 cos ωt, ω = √(k/μ), μ = 0.75 kg (accuracy.md §3.5).
+  // Along the axis only: s(t) = L0 + 0.2 cos ωt, ω = √(k/μ), μ = 0.75 kg (docs/design/accuracy.md §3.5).
   World w;
   w.setGravity(Vec2::Zero());
   const BodyId a = test::addCircle(w, 0.1, Vec2(0, 0), 1.0);
@@ -255,7 +255,7 @@ TEST_CASE("two-body spring: momentum conserved by every integrator; RK4 matches 
   CHECK(w.body(b).center.x() == doctest::Approx(1.1761953369).epsilon(1e-7));
 }
 
-TEST_CASE("implicit Euler: a 1e6 N/m spring at 60 Hz stays finite and never gains energy (accuracy.md S1)") {
+TEST_CASE("implicit Euler: a 1e6 N/m spring at 60 Hz stays finite and never gains energy (docs/design/accuracy.md S1)") {
   // ω h = 16.7: semi-implicit Euler overflows after ~63 steps, RK4 after ~45.
   const auto run = [](Integrator integrator) {
     World w;
@@ -302,7 +302,7 @@ TEST_CASE("implicit Euler: one step on an undamped spring matches the closed for
   CHECK(w.body(body).center.x() == Approx(0.1 + h * v1).epsilon(1e-12));
 }
 
-TEST_CASE("dampers never flip the sign of a velocity, whatever c·h/m is (accuracy.md S5)") {
+TEST_CASE("dampers never flip the sign of a velocity, whatever c·h/m is (docs/design/accuracy.md S5)") {
   for (Integrator integrator : {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler, Integrator::ImplicitEuler,
                                 Integrator::RungeKutta4}) {
     CAPTURE(integratorName(integrator));
@@ -327,7 +327,7 @@ TEST_CASE("dampers never flip the sign of a velocity, whatever c·h/m is (accura
   }
 }
 
-TEST_CASE("a critically damped spring does not destabilise semi-implicit Euler (accuracy.md S6)") {
+TEST_CASE("a critically damped spring does not destabilise semi-implicit Euler (docs/design/accuracy.md S6)") {
   // k = 2916 N/m, c = 108 N·s/m on 1 kg (ζ = 1, ωh = 0.9): with explicit damping the spectral
   // radius would be 1.25 and the oscillator would blow up.
   World w;

@@ -1,4 +1,4 @@
-// Narrow phase (origin.md §7): every shape pair in every configuration, normals from A to B,
+// Narrow phase (docs/design/thesis.md §7): every shape pair in every configuration, normals from A to B,
 // depths, point positions and feature ids.
 #include <doctest/doctest.h>
 

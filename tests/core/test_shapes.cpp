@@ -119,7 +119,7 @@ TEST_CASE("rejected shapes name the field and the offending value") {
   }
 }
 
-TEST_CASE("point in shape (origin.md §7)") {
+TEST_CASE("point in shape (docs/design/thesis.md §7)") {
   const Transform xf{Vec2(2, 1), Rot::fromAngle(pi / 2)};
   const Shape box = makeBox(2, 1);  // after a quarter turn: 1 wide, 2 tall around (2, 1)
   CHECK(containsPoint(box, xf, Vec2(2.4, 1.9)));

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Bounded fuzz run for CI (reliability.md V3): replays every regression input, then fuzzes each
+# Bounded fuzz run for CI (docs/design/reliability.md V3): replays every regression input, then fuzzes each
 # target for SECONDS (default 60) from the committed corpus plus the scenes as read-only seeds.
 # New corpus entries go to a temporary directory (copy them into tests/fuzz/corpus/ by hand if
 # they are worth keeping). Exit status 1 and the crashing input's path if anything crashes, leaks,

@@ -1,4 +1,4 @@
-// Time and memory budgets (reliability.md test plan C1–C4, M1–M2; engine/lua/src/budget.h):
+// Time and memory budgets (docs/design/reliability.md test plan C1–C4, M1–M2; engine/lua/src/budget.h):
 // every runaway in every kind of call into Lua stops with a clear message soon after its budget,
 // pcall cannot swallow it, C functions the hook cannot interrupt are capped, the memory cap ends
 // memory bombs, and the scene (or the process, for a failed load) carries on.
@@ -290,7 +290,7 @@ TEST_CASE("caps: a catastrophic pattern is refused at once, with the function an
   });
   MESSAGE(o.message);
   CHECK(o.message.starts_with("test.lua:3: string.find: pattern \".-.-.-.-b$\" is too costly for a subject of 200 bytes"));
-  CHECK(o.ms < 100.0);  // stock Lua 5.4.4: 20.5 s (reliability.md §0.4)
+  CHECK(o.ms < 100.0);  // stock Lua 5.4.4: 20.5 s (docs/design/reliability.md §0.4)
   // gmatch, gsub and match go through the same check.
   for (const char* call : {"s:match('(.-)(.-)(.-)(.-)b')", "s:gsub('.-.-.-.-b', '')", "for x in s:gmatch('.-.-.-.-b') do end"}) {
     const std::string snippet = call;

@@ -1,4 +1,4 @@
-// Determinism (reliability.md test plan D1, D2; Box2D's test/test_determinism.c): every scene in
+// Determinism (docs/design/reliability.md test plan D1, D2; Box2D's test/test_determinism.c): every scene in
 // scripts/scenes/ and tests/scenes/, loaded fresh and stepped kSteps steps of its own dt, has a
 // state hash over every body's uid, position, angle, velocity and angular velocity bits. The hash
 // must equal the golden value below, in this process and in 3 separate processes (each with its

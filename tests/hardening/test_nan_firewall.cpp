@@ -1,4 +1,4 @@
-// The NaN firewall seen from scenes (reliability.md R1, R2; engine/core/src/nan_guard.cpp): a body
+// The NaN firewall seen from scenes (docs/design/reliability.md R1, R2; engine/core/src/nan_guard.cpp): a body
 // whose state becomes non-finite is frozen and reported with body, step and force, and never
 // poisons the bodies around it. Non-finite values from Lua are stopped earlier, at the boundary.
 #include <doctest/doctest.h>

@@ -1,4 +1,4 @@
-// Input validation as a property (reliability.md test plan V1, V2, S4): every option of every
+// Input validation as a property (docs/design/reliability.md test plan V1, V2, S4): every option of every
 // add_* function, of the `scene` table and every writable body field, given each value of a pool
 // of bad (and good) values, either loads — when an oracle written separately from the loader says
 // the value is valid — or fails with exactly one SceneError that names the function and the field.

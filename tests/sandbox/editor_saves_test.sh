@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Hot reload against the ways editors save (reliability.md §3.2, test plan H1; with
+# Hot reload against the ways editors save (docs/design/reliability.md §3.2, test plan H1; with
 # RIGIDLAB_WATCH=poll also H3). While the sandbox runs, the scene is saved, three rounds of each:
 # in place (truncate + write), temporary file + rename, vim's backup-rename, delete + create, two
 # chunks 200 ms apart. Each save must give exactly one `reloaded` line, with the new content (the

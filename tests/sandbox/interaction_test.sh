@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The interaction of origin.md §11 with a real mouse and keyboard (xdotool under Xvfb), on
+# The interaction of docs/design/thesis.md §11 with a real mouse and keyboard (xdotool under Xvfb), on
 # scenes/interact.lua (world (x, y) → pixel (640 + 72x, 360 − 72y)):
 #   drag the ball while running from (2, 0) to (2, 2) → it follows the cursor (mouse force);
 #   Space pauses; drag the static box from (-2, 2) to (-2, -2) → moved;

@@ -1,4 +1,4 @@
-// The file watcher against the ways editors save (reliability.md §3.2, test plan H1 and H3):
+// The file watcher against the ways editors save (docs/design/reliability.md §3.2, test plan H1 and H3):
 // in place, temp + rename (20 times in a row), backup-rename (vim), delete + create, two chunks with a
 // gap, a burst of saves, touch, our own temporaries; polling mode; a directory removed and recreated.
 #include <doctest/doctest.h>

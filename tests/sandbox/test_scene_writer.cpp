@@ -1,6 +1,6 @@
 // Saving a world as a Lua scene (scene_writer.h): round trip of the whole state to 1e-12 and of
 // the text byte for byte, names that are hostile to a serializer, refused non-finite numbers, and
-// the atomic write under kill -9 and write errors (reliability.md W1–W3); format 3 (shapes, body
+// the atomic write under kill -9 and write errors (docs/design/reliability.md W1–W3); format 3 (shapes, body
 // options, joints) bit for bit through the scene API double; formats 1 and 2 still read.
 #include <doctest/doctest.h>
 #include <signal.h>

@@ -1,4 +1,4 @@
-// Stage 2 of the step: candidate pairs from bounding boxes (origin.md §7).
+// Stage 2 of the step: candidate pairs from bounding boxes (docs/design/thesis.md §7).
 #include "broad_phase.h"
 
 #include <algorithm>

@@ -1,5 +1,5 @@
 // Broad phase: which pairs of bodies might touch. It sees only bounding boxes. Pairs come out in a
-// deterministic order (a < b, ascending), static–static pairs never (origin.md §7).
+// deterministic order (a < b, ascending), static–static pairs never (docs/design/thesis.md §7).
 #pragma once
 
 #include <cstddef>
@@ -67,7 +67,7 @@ class BroadPhase {
                          PairOverflow* overflow = nullptr) = 0;
 };
 
-// The thesis's naive test of every pair (origin.md §7), with a bounding-box check per pair. O(n²):
+// The thesis's naive test of every pair (docs/design/thesis.md §7), with a bounding-box check per pair. O(n²):
 // fine for a few hundred bodies. Only `limit.pairs` applies (testing every pair is its design).
 class AllPairsBroadPhase final : public BroadPhase {
  public:

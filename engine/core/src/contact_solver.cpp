@@ -1,19 +1,19 @@
-// Stage 4 of the step: sequential impulses on the contact velocities (origin.md §8–10; E. Catto,
+// Stage 4 of the step: sequential impulses on the contact velocities (docs/design/thesis.md §8–10; E. Catto,
 // "Iterative Dynamics with Temporal Coherence", GDC 2005; box2d-lite Arbiter::ApplyImpulse).
 //
 // For each contact point with normal n (A → B) and tangent t = n × 1:
 //   relative velocity     v_r = (v_B + ω_B × r_B) − (v_A + ω_A × r_A)
 //   effective mass        m_n = 1 / (1/m_A + 1/m_B + (r_A × n)²/I_A + (r_B × n)²/I_B)
 //   restitution target    v_target = −e (v_r·n) if v_r·n < −threshold, else 0; computed once before
-//                         the iterations so restitution is not re-applied each pass (origin.md §9),
+//                         the iterations so restitution is not re-applied each pass (docs/design/thesis.md §9),
 //                         and taken at the moment the overlap began (prepare() below)
 //   normal impulse        λ = −m_n (v_r·n − v_target); accumulated P_n = max(P_n + λ, 0)
 //   friction impulse      λ_t = −m_t (v_r·t); accumulated P_t clamped to ±f P_n, using the
-//                         accumulated normal impulse, not the last increment (origin.md §10, Catto)
+//                         accumulated normal impulse, not the last increment (docs/design/thesis.md §10, Catto)
 // With warm starting (WorldDef::warm_starting) each point starts from the impulses it had in the
 // previous step (matched by feature id); without it, from zero as in the thesis.
 // f is the static coefficient f_s when the tangential slip at the start of the step is below
-// WorldDef::static_friction_speed, else the dynamic f_d (origin.md §10). In each pass friction comes
+// WorldDef::static_friction_speed, else the dynamic f_d (docs/design/thesis.md §10). In each pass friction comes
 // first and the normal impulses last (non-penetration matters most); a contact with two points
 // solves its normal impulses together as a 2×2 problem (solveBlock).
 #include <Eigen/Dense>
@@ -109,7 +109,7 @@ void prepare(WorldImpl& w, Contact& c, SolverPrepared& out) {
       // Restitution at the moment the overlap began, τ before the end of the step: the approach
       // speed then was v_n − a τ, with a the normal acceleration over the step (from the velocity
       // at its start); after the bounce the same acceleration acts for τ:
-      //   v_target = −e (v_n − a τ) + a τ = −e v_n + (1 + e) a τ        (accuracy.md §3.12)
+      //   v_target = −e (v_n − a τ) + a τ = −e v_n + (1 + e) a τ        (docs/design/accuracy.md §3.12)
       const double accel = (vn - v_start.dot(n)) / w.dt;
       cp.target_velocity = std::max(0.0, -c.restitution * vn + (1.0 + c.restitution) * accel * cp.overlap_time);
     }

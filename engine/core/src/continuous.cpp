@@ -1,4 +1,4 @@
-// Continuous collision detection of fast bodies against static ones (origin.md §3.3.1 and §13:
+// Continuous collision detection of fast bodies against static ones (docs/design/thesis.md §3.3.1 and §13:
 // without it a small fast body tunnels through a thin wall between two steps).
 //
 // After integration, a dynamic body that moved more than its inner radius in the step is

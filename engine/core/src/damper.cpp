@@ -1,4 +1,4 @@
-// Linear and angular damper, F = −c v and τ = −c_ω ω (origin.md §1, §4).
+// Linear and angular damper, F = −c v and τ = −c_ω ω (docs/design/thesis.md §1, §4).
 #include "rigidlab/debug_draw.h"
 #include "rigidlab/error.h"
 #include "rigidlab/forces.h"

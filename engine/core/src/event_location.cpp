@@ -1,9 +1,9 @@
 // The step's time line: where inside a step something happens that the integrator must not step
-// over, and the integration cut there (origin.md §13 future work: "RK4 with collision handling in
+// over, and the integration cut there (docs/design/thesis.md §13 future work: "RK4 with collision handling in
 // its sub-steps"). Two kinds of event, one loop:
-//   scheduled  a time-limited force ends (origin.md §6): known before the step, so every body's
+//   scheduled  a time-limited force ends (docs/design/thesis.md §6): known before the step, so every body's
 //              step is split there and the force acts for exactly its duration. Without the split
-//              every integrator, RK4 included, is first order on such forces (accuracy.md §3.7).
+//              every integrator, RK4 included, is first order on such forces (docs/design/accuracy.md §3.7).
 //   located    an impact (WorldDef::impacts = Located, in the islands impact_rule.cpp picks): the
 //              earliest time in an interval at which a pair's gap reaches zero, found on the
 //              integrator's own dense output (dense_output.cpp) by a deterministic root search
@@ -13,7 +13,7 @@
 //              integration continues from it to the end of the interval; their other pairs are
 //              searched again along the new piece. Without this, a step that ends within 2 cm of
 //              a floor treats the contact as touching and the bounce is late by h − 2 (t_c − t_n):
-//              collisions make any integrator first order (accuracy.md §3.12).
+//              collisions make any integrator first order (docs/design/accuracy.md §3.12).
 // Every body is first integrated over the scheduled intervals exactly as before (so islands that
 // are not located, piles and stacks, give the same bits); a located island without an impact keeps
 // that result.

@@ -11,7 +11,7 @@
 //     island that rests on something (a stack, a pile, a ball at rest, a block sliding on a slope)
 //     has nothing to locate and is handled once per step as before;
 // and only while at most WorldDef::impact_max_bodies dynamic bodies are awake in the world. What
-// the bounds cost and buy is measured in README "Impacts: located or once per step": on 100 balls
+// the bounds cost and buy is measured in docs/physics.md "Impacts: located or once per step": on 100 balls
 // bouncing apart the search adds 0.1 µs per located body and step to the integrate stage (9 % of
 // the step), which a rain of 1000 falling discs would pay on every disc for no visible gain (its
 // discs touch one another), while for a few bouncing bodies it is the difference between first and

@@ -3,7 +3,7 @@
 // simultaneous impacts in one island (a ball landing on two others, a box landing flat) are
 // resolved together.
 //
-// For each point with normal n (A → B), tangent t = n × 1 and lever arms r_A, r_B (origin.md §8):
+// For each point with normal n (A → B), tangent t = n × 1 and lever arms r_A, r_B (docs/design/thesis.md §8):
 //   relative velocity   v_r = (v_B + ω_B × r_B) − (v_A + ω_A × r_A)
 //   effective masses    m_n = 1 / (1/m_A + 1/m_B + (r_A × n)²/I_A + (r_B × n)²/I_B), m_t likewise with t
 //   Newton's law        v_n' = −e v_n if the approach −v_n is faster than the restitution threshold,
@@ -16,7 +16,7 @@
 // changes by more than 1e-13 of the largest: the iteration converges to the impulses that satisfy
 // every point's conditions together. One circle point needs a single pass: its normal impulse
 // does not turn the body (r ∥ n), and the friction impulse then sticks or slides exactly as the
-// Poisson–Coulomb impact does (accuracy.md §3.11: thesis experiment 1 to round-off).
+// Poisson–Coulomb impact does (docs/design/accuracy.md §3.11: thesis experiment 1 to round-off).
 #include <algorithm>
 #include <cmath>
 

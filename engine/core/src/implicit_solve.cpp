@@ -10,7 +10,7 @@
 //          (spectral radius 1/√(1 + (ωh)²) on an undamped spring) and loses energy, never gains.
 //   s = 0  explicit and semi-implicit Euler: only damping is implicit, so a damper never flips a
 //          velocity's sign whatever c·h/m is (v ← v / (1 + c h / m), the Padé form Box2D uses),
-//          and a critically damped spring cannot destabilise semi-implicit Euler (accuracy.md S5,
+//          and a critically damped spring cannot destabilise semi-implicit Euler (docs/design/accuracy.md S5,
 //          S6); the spring forces themselves stay explicit, as the methods' names promise.
 // Bodies coupled by two-body springs are solved together (sparse LDLT); the usual case, where
 // every implicit force acts on one body, is one 3×3 solve per body.

@@ -1,5 +1,5 @@
 // Stage 1 of the step: integrate every dynamic body under gravity and the non-contact forces
-// (origin.md §5, §6). The state of body i is y_i = (c_i, θ_i, v_i, ω_i), centre of mass, angle,
+// (docs/design/thesis.md §5, §6). The state of body i is y_i = (c_i, θ_i, v_i, ω_i), centre of mass, angle,
 // linear and angular velocity; its derivative is f(t, y) = (v, ω, F/m + g, τ/I).
 //
 //   explicit Euler        c += h v_n,  θ += h ω_n,  v += h a(t_n, y_n),  ω += h α(t_n, y_n)
@@ -141,7 +141,7 @@ void integrateInterval(WorldImpl& w, double t0, double h, const char* only) {
 
   // RK4 is explicit: a damper with h·c/m above 2.785 multiplies the velocity by more than 1 each
   // step (RK4's factor is the degree-4 Taylor polynomial of e^(−hc/m): 291 at hc/m = 10) and blows
-  // up (accuracy.md S5). Above 2.5 the interval is integrated as semi-implicit Euler with implicit
+  // up (docs/design/accuracy.md S5). Above 2.5 the interval is integrated as semi-implicit Euler with implicit
   // damping instead, which never flips or grows a velocity; counted in StepStats::rk4_handovers.
   Integrator method = w.def.integrator;
   if (method == Integrator::RungeKutta4 && any_dependent && dampingTooStiffForRk4(w, t0, h, only)) {

@@ -91,7 +91,7 @@ Manifold collideCircles(const Shape& a, const Transform& xa, const Shape& b, con
   const double dist = d.norm();
   const double separation = dist - a.radius - b.radius;
   if (separation > margin) return m;
-  // Contact on the line of centres (origin.md §7); coincident centres push apart along +y.
+  // Contact on the line of centres (docs/design/thesis.md §7); coincident centres push apart along +y.
   m.normal = dist > 0.0 ? Vec2(d / dist) : Vec2(0.0, 1.0);
   const Vec2 pa = ca + a.radius * m.normal, pb = cb - b.radius * m.normal;
   m.points[0] = {0.5 * (pa + pb), separation, 0};
@@ -101,7 +101,7 @@ Manifold collideCircles(const Shape& a, const Transform& xa, const Shape& b, con
 
 Manifold collidePolygonAndCircle(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
                                  double margin) {
-  // Closest point of the polygon's boundary to the circle's centre (origin.md §7 ClosestEdgePoint),
+  // Closest point of the polygon's boundary to the circle's centre (docs/design/thesis.md §7 ClosestEdgePoint),
   // in the polygon's frame.
   Manifold m;
   const Vec2 c = xa.applyInverse(xb.apply(b.center));

@@ -1,4 +1,4 @@
-// Narrow phase (origin.md §7): pure functions per shape pair. No world access, no allocation.
+// Narrow phase (docs/design/thesis.md §7): pure functions per shape pair. No world access, no allocation.
 //
 // A manifold holds up to two points. Its normal is a unit vector from shape A to shape B. Each
 // point lies midway between the two surfaces and carries the separation along the normal

@@ -1,4 +1,4 @@
-// Stage 3 of the step: contact manifolds for the candidate pairs of shapes (origin.md §7), each
+// Stage 3 of the step: contact manifolds for the candidate pairs of shapes (docs/design/thesis.md §7), each
 // turned into a contact constraint with the two shapes' combined material (shape.h Material).
 //
 // Persistent contacts: a point whose pair and feature id were in contact in the previous step

@@ -1,5 +1,5 @@
 // Stage 5 of the step: make positions agree with the contact-corrected velocities, then remove the
-// penetration that is left (origin.md §9).
+// penetration that is left (docs/design/thesis.md §9).
 //
 // Contact displacement (WorldDef::contact_displacement): the step integrates positions before the
 // contacts are found (world.cpp), so a contact impulse Δv changes the velocity but not the distance
@@ -26,7 +26,7 @@
 //   Δc_A = −n d (1/m_A) / (1/m_A + 1/m_B),   Δc_B = +n d (1/m_B) / (1/m_A + 1/m_B)
 // Contacts are processed in order; the depth of each is reduced by what earlier contacts already
 // moved its bodies along its normal, so a body is not pushed twice for the same overlap. It is
-// simple and exact for a single contact but imprecise for stacks (bodies creep, origin.md §9).
+// simple and exact for a single contact but imprecise for stacks (bodies creep, docs/design/thesis.md §9).
 //
 // Nonlinear Gauss–Seidel (the default; E. Catto, Box2D 2.4 b2ContactSolver::SolvePositionConstraints):
 // a few passes over the contact points; each recomputes the point's current separation s from its

@@ -96,7 +96,7 @@ Shape makePolygon(std::span<const Vec2> points) {
     throw InputError("vertices", "vertices has only " + std::to_string(v.size()) +
                                      " distinct points, a polygon needs 3");
 
-  // Enforce counter-clockwise order (positive signed area, origin.md §3).
+  // Enforce counter-clockwise order (positive signed area, docs/design/thesis.md §3).
   double area2 = 0.0;
   for (size_t i = 0; i < v.size(); ++i) area2 += cross(v[i] - v[0], v[(i + 1) % v.size()] - v[0]);
   if (area2 < 0) {
@@ -217,7 +217,7 @@ Shape makeBox(double width, double height, const Vec2& center, double angle) {
 MassData computeMass(const Shape& shape, double density) {
   MassData md;
   if (shape.type == ShapeType::Circle) {
-    // Disc: A = πR², I = ½ m R² about its centre (origin.md §1).
+    // Disc: A = πR², I = ½ m R² about its centre (docs/design/thesis.md §1).
     md.area = std::numbers::pi * shape.radius * shape.radius;
     md.mass = density * md.area;
     md.center = shape.center;
@@ -243,7 +243,7 @@ MassData computeMass(const Shape& shape, double density) {
     md.inertia = m_rect * (l * l + 4.0 * r * r) / 12.0 + m_disc * (0.5 * r * r + h * h + 2.0 * h * lc);
     return md;
   }
-  // Polygon centroid (origin.md §3), summed relative to vertex 0 for precision far from the origin:
+  // Polygon centroid (docs/design/thesis.md §3), summed relative to vertex 0 for precision far from the origin:
   //   A = ½ Σ (x_i y_{i+1} − x_{i+1} y_i)
   //   C = 1/(6A) Σ (p_i + p_{i+1}) (x_i y_{i+1} − x_{i+1} y_i)
   const std::vector<Vec2>& v = shape.vertices;
@@ -260,7 +260,7 @@ MassData computeMass(const Shape& shape, double density) {
   md.area = 0.5 * area2;
   md.center = ref + c / (3.0 * area2);  // 1/(6A) = 1/(3·2A)
   md.mass = density * md.area;
-  // Inertia about the centroid (origin.md §3), p_i relative to the centroid:
+  // Inertia about the centroid (docs/design/thesis.md §3), p_i relative to the centroid:
   //   I = (m/6) Σ |p_{i+1} × p_i| (p_{i+1}·p_{i+1} + p_{i+1}·p_i + p_i·p_i) / Σ |p_{i+1} × p_i|
   double num = 0.0, den = 0.0;
   for (size_t i = 0; i < n; ++i) {

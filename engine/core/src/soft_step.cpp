@@ -1,4 +1,5 @@
-// Stage 4 of the step, default solver: the soft step (WorldDef::contact_solver = SoftStep).
+// Stage 4 of the step: the soft step (WorldDef::contact_solver = SoftStep, and the auto solver's
+// choice for islands of many contact points).
 // E. Catto, "Solver2D" (2024) and Box2D v3's solver: sub-stepping with soft contact constraints
 // and relaxation. Why: sequential impulses with a separate position pass (contact_solver.cpp,
 // position_correction.cpp) cannot carry the weight of a hundred rows of boxes to the ground within
@@ -41,7 +42,7 @@
 // are independent, so the processor overlaps them instead of waiting on one chain of loads, a
 // division and stores per contact.
 //
-// Stiffness and sub-steps (measured on the bench scenes, see README "Performance"): the contacts
+// Stiffness and sub-steps (measured on the bench scenes, see docs/performance.md): the contacts
 // are springs, so a column of boxes buckles if they are too soft (a 20-box stack with boxes
 // staggered by 1 cm topples at 30 Hz and stands from about 55 Hz), and with one pass per sub-step
 // the iteration stops converging once f·h exceeds about 1/8 (pyramids creep sideways). Hence the
@@ -562,8 +563,8 @@ void pass(std::vector<SoftBody>& bodies, std::vector<SoftLanes>& groups, std::ve
 // impact speed less what the step's forces took away after the impact (they kept pressing the
 // bodies together for the remaining sub-steps):
 //   v_target = −e v_impact + (n − 1 − k) · kick      (kick: the forces' normal velocity per sub-step)
-// Friction acts on the restitution impulse too (Coulomb over the whole collision, origin.md §10;
-// accuracy.md §3.11: experiment 1's friction impulse is f times the full normal impulse).
+// Friction acts on the restitution impulse too (Coulomb over the whole collision, docs/design/thesis.md §10;
+// docs/design/accuracy.md §3.11: experiment 1's friction impulse is f times the full normal impulse).
 void restitute(std::vector<SoftBody>& bodies, const SoftLanes& c, int l, SoftTally& t, SoftTotals& totals, double threshold,
                int substeps) {
   SoftBody& a = bodies[c.a[l]];
@@ -796,7 +797,7 @@ void softStep(WorldImpl& w) {
         sc.k[i][l] = kn;
         sc.tangent_mass[i][l] = kt > 0.0 ? 1.0 / kt : 0.0;
         sc.inv_k[i][l] = 1.0 / kn;
-        // f_s or f_d from the slip at the start of the step (origin.md §10); the bodies still hold
+        // f_s or f_d from the slip at the start of the step (docs/design/thesis.md §10); the bodies still hold
         // the velocities of the start of the step.
         const double slip = relative(a, b, anchorOf(sc, i, l), tan.x(), tan.y());
         sc.friction[i][l] = std::abs(slip) < w.def.static_friction_speed ? c.static_friction : c.friction;

@@ -2,7 +2,7 @@
 //
 // Why a grid: rigidlab's benchmark scenes (pyramids, stacks, rain) are made of bodies of similar
 // size packed together, where a grid finds the pairs in O(n) with a few array passes and no tree
-// to maintain. Measured on the peer scenes (README "Performance"): for the 5050-box pyramid it
+// to maintain. Measured on the peer scenes (docs/performance.md): for the 5050-box pyramid it
 // takes a fraction of a millisecond per step, against ~13 M box tests for all pairs. Bodies much
 // larger than a cell (the ground, the walls of a container) would cover thousands of cells; they go
 // to a short "large" list tested against everything instead. A sweep along x was the other

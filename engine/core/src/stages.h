@@ -9,7 +9,7 @@ struct WorldImpl;
 struct Contact;
 
 // The step's time line (event_location.cpp): every body integrated over the step, split at force
-// end times and, with located impacts, at impacts (origin.md §5, §6).
+// end times and, with located impacts, at impacts (docs/design/thesis.md §5, §6).
 void integrate(WorldImpl& w, double dt);
 // integrator.cpp: the start-of-step states (WorldImpl::start_*) and scratch; one interval of
 // length h from time t0 with the world's integrator, for the awake dynamic bodies marked in `only`
@@ -28,11 +28,11 @@ void sweepFastBodies(WorldImpl& w);        // continuous.cpp      fast bodies ag
 // into w.implicit.dv; false (nothing computed) if no active force can be linearised. `only`: as
 // integrateInterval's.
 bool implicitVelocityChange(WorldImpl& w, double t0, double h, bool stiffness, const char* only);
-void findPairs(WorldImpl& w);              // broad_phase.cpp     origin.md §7
+void findPairs(WorldImpl& w);              // broad_phase.cpp     docs/design/thesis.md §7
 // Keeps the broad phase's pair list between steps (PairCache, broad_phase.h) for this process; on
 // by default. Off rebuilds every step: the same pairs, for tests.
 void usePairCache(bool on);
-void narrowPhase(WorldImpl& w);            // narrow_phase.cpp    origin.md §7
+void narrowPhase(WorldImpl& w);            // narrow_phase.cpp    docs/design/thesis.md §7
 // Contact events (contact_events.cpp): a contact that begins or ends, from the narrow phase's merge
 // of this step's contacts with the last step's; their impulses once the solve is done.
 void contactBegins(WorldImpl& w, uint32_t contact);
@@ -40,7 +40,7 @@ void contactEnds(WorldImpl& w, const Contact& previous);
 void finishContactEvents(WorldImpl& w);
 void preSolve(WorldImpl& w);               // pre_solve.cpp       one-way platforms, the pre-solve callback
 void updateSensors(WorldImpl& w);          // sensor.cpp          what is in each sensor
-void solveContacts(WorldImpl& w);          // contact_solver.cpp  origin.md §8–10, calls softStep
+void solveContacts(WorldImpl& w);          // contact_solver.cpp  docs/design/thesis.md §8–10, calls softStep
 void softStep(WorldImpl& w);               // soft_step.cpp       the contacts in w.soft_solved
 // Chooses the soft step's AVX2 or baseline passes for this process (by default AVX2 where the
 // processor has it); false if AVX2 was asked for and the processor lacks it. For tests.
@@ -51,9 +51,9 @@ void softStepOnePointPass(bool on);
 // κ: the weight an integrator's position update gives to the velocity gained during the step
 // (contact_solver.cpp).
 double restingWeight(Integrator integrator);
-void correctPositions(WorldImpl& w);       // position_correction.cpp  origin.md §9, the contacts in w.solved
+void correctPositions(WorldImpl& w);       // position_correction.cpp  docs/design/thesis.md §9, the contacts in w.solved
 void updateSleep(WorldImpl& w);            // sleep.cpp           islands and sleeping
 void breakJoints(WorldImpl& w);            // world_joint.cpp     joints over their break force or torque
-void expireForces(WorldImpl& w);           // world.cpp           origin.md §6
+void expireForces(WorldImpl& w);           // world.cpp           docs/design/thesis.md §6
 
 }  // namespace rigidlab

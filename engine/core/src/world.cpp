@@ -1,7 +1,7 @@
-// The world and its step (origin.md §6, Algorithm 4).
+// The world and its step (docs/design/thesis.md §6, Algorithm 4).
 //
 // Why the stages are in this order: the thesis integrates first and handles collisions once per
-// step afterwards (Millington's scheme, origin.md §5): RK4 runs over the smooth forces without
+// step afterwards (Millington's scheme, docs/design/thesis.md §5): RK4 runs over the smooth forces without
 // contacts in its sub-stages, then the contacts found at the new positions correct the velocities
 // (restitution, friction) and finally the positions (penetration). Forces run out last, so a force
 // with a duration acts during the whole step in which it expires (the integration splits that step
@@ -71,23 +71,23 @@ void World::step(double dt) {
   const size_t incidents_before = w.incidents.size();
   const auto t0 = Clock::now();
   try {
-    integrate(w, dt);  // origin.md §5: all non-contact forces, RK4 stages included; located impacts
+    integrate(w, dt);  // docs/design/thesis.md §5: all non-contact forces, RK4 stages included; located impacts
   } catch (...) {
     undoStep(w, incidents_before);  // forces run only here
     throw;
   }
   guardNonFinite(w, "integrate");  // before contacts: a non-finite body must not touch others
   w.ccd_hit.assign(w.bodies.size(), 0);
-  if (w.def.continuous) sweepFastBodies(w);  // origin.md §13: no tunnelling through static bodies
+  if (w.def.continuous) sweepFastBodies(w);  // docs/design/thesis.md §13: no tunnelling through static bodies
   const auto t1 = Clock::now();
   try {
-    findPairs(w);  // origin.md §7: all pairs, skipping static–static; throws at WorldDef::pair_cap
+    findPairs(w);  // candidate pairs (the grid; thesis §7 tested all), no static–static; throws at pair_cap
   } catch (...) {
     undoStep(w, incidents_before);
     throw;
   }
   const auto t2 = Clock::now();
-  narrowPhase(w);  // origin.md §7: manifolds with feature ids; contact begin and end events
+  narrowPhase(w);  // docs/design/thesis.md §7: manifolds with feature ids; contact begin and end events
   settleLocatedContacts(w);  // located impacts: pairs not touching wait for the next step; their events
   try {
     preSolve(w);  // one-way platforms and the pre-solve callback disable contacts for this step
@@ -96,9 +96,9 @@ void World::step(double dt) {
     throw;
   }
   const auto t3 = Clock::now();
-  solveContacts(w);  // origin.md §8–10: contacts and joints; large islands by the soft step
+  solveContacts(w);  // docs/design/thesis.md §8–10: contacts and joints; large islands by the soft step
   const auto t4 = Clock::now();
-  correctPositions(w);  // origin.md §9: penetration and joint errors (the soft step's islands need none)
+  correctPositions(w);  // docs/design/thesis.md §9: penetration and joint errors (the soft step's islands need none)
   guardNonFinite(w, "the contact solve");
   breakJoints(w);  // joints over their break force or torque go, reported (jointBreaks)
   finishContactEvents(w);  // the events' impulses, now that they are known
@@ -108,7 +108,7 @@ void World::step(double dt) {
   ++w.layout_version;
   updateSleep(w);  // islands whose bodies stayed still long enough stop being simulated
   ++w.step_count;
-  expireForces(w);  // origin.md §6: forces whose time ran out are removed
+  expireForces(w);  // docs/design/thesis.md §6: forces whose time ran out are removed
   w.locked = false;
   const auto t6 = Clock::now();
 

@@ -1,4 +1,4 @@
-// Forces attached to bodies (origin.md §4, §6): adding, removing, reading.
+// Forces attached to bodies (docs/design/thesis.md §4, §6): adding, removing, reading.
 #include "rigidlab/error.h"
 #include "rigidlab/world.h"
 #include "world_impl.h"

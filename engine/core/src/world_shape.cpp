@@ -38,7 +38,7 @@ BodyShape& WorldImpl::get(ShapeId id) {
   return shapes[id.index];
 }
 
-// Mass properties of the body from its shapes (origin.md §3; parallel-axis theorem):
+// Mass properties of the body from its shapes (docs/design/thesis.md §3; parallel-axis theorem):
 //   M = Σ m_i,   C = Σ m_i c_i / M,   I = Σ (I_i + m_i |c_i − C|²)
 // One shape: its own values, exactly. `field` and `value`: the input the densities came from, for
 // the error message.

@@ -1,4 +1,4 @@
-// Wall-clock budgets for calls into a scene's Lua (reliability.md §1.3, §1.5 item 5, test plan C).
+// Wall-clock budgets for calls into a scene's Lua (docs/design/reliability.md §1.3, §1.5 item 5, test plan C).
 //
 // Every call from the host into Lua runs inside a budget window: the main chunk, PopulateWorld,
 // OnStep, Check, OnKey, OnDraw and Exact each get ScriptLimits::hook_seconds; the Lua forces of

@@ -1,6 +1,6 @@
 // Caps on the C library functions a scene can call that the budget hook (budget.h) cannot
-// interrupt, because Lua's hooks only fire while Lua code runs (reliability.md §0.4b, §1.5 item 4).
-// Implemented in script_host.cpp (installGuards); documented in README "Security".
+// interrupt, because Lua's hooks only fire while Lua code runs (docs/design/reliability.md §0.4b, §1.5 item 4).
+// Implemented in script_host.cpp (installGuards); documented in docs/security.md.
 #pragma once
 
 #include <cstddef>

@@ -99,7 +99,7 @@ host.register_vec2(vec2_mt)
 _ENV.vec2 = vec2
 
 ---------------------------------------------------------------------------------------------------
--- Sandbox wrappers (README "Security"): text-only, size-capped load, no __gc finalizers, no
+-- Sandbox wrappers (docs/security.md): text-only, size-capped load, no __gc finalizers, no
 -- garbage-collector control, pcall/xpcall that cannot swallow a spent budget, no way back to the
 -- originals (they live only in these upvalues).
 

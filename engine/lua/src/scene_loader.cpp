@@ -1,4 +1,4 @@
-// Loading a scene and running its hooks (origin.md §3 and §11: PopulateWorld builds the model).
+// Loading a scene and running its hooks (docs/design/thesis.md §3 and §11: PopulateWorld builds the model).
 #include <algorithm>
 #include <cctype>
 #include <cstdio>

@@ -4,7 +4,7 @@
 // scripts/saved_world.lua, so a saved scene loads through the same sandboxed path (and the same
 // validation) as any hand-written scene, and nothing a user typed (a body name) can become code:
 // strings are written with every byte outside printable ASCII, and the quote and backslash,
-// escaped as \ddd or \" \\ (reliability.md §4, "Write data only").
+// escaped as \ddd or \" \\ (docs/design/reliability.md §4, "Write data only").
 //
 // Numbers. Each double is written as its shortest decimal form that reads back to the same bits
 // (std::to_chars without a precision, then strtod in Lua's parser: both are correctly rounded), with
@@ -12,7 +12,7 @@
 // 2^63). Non-finite numbers are refused with the field path: a NaN in a scene file would load as a
 // global variable named `nan`, i.e. nil.
 //
-// Atomic write (reliability.md §4, Redis rdbSave; measured there: 0/200 torn files under kill -9):
+// Atomic write (docs/design/reliability.md §4, Redis rdbSave; measured there: 0/200 torn files under kill -9):
 // create `.<name>.rigidlab-tmp-<pid>-<n>` in the target's directory with O_EXCL, write, fsync, close,
 // rename over the target, fsync the directory. Every error before the rename removes the temporary
 // file; a SIGKILL cannot, so removeStaleTemporaries() sweeps them at the next start and the sandbox's

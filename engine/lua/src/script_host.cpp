@@ -79,7 +79,7 @@ int luaRegisterVec2(lua_State* L) {
 }
 
 
-// --- Caps on C functions the budget hook cannot interrupt (script_host.h, README "Security").
+// --- Caps on C functions the budget hook cannot interrupt (script_host.h, docs/security.md).
 
 // Index just past a character class "[...]" starting at p[i] == '[' (lstrlib's classEnd).
 size_t skipSet(std::string_view p, size_t i) {
@@ -489,7 +489,7 @@ ScriptHost::ScriptHost(const SceneOptions& options, std::filesystem::path scene_
     lua_pushboolean(L, 0);
     lua_setfield(L, -2, "__metatable");
     lua_pop(L, 2);
-    // Runs repeat: the generator starts from the same seed every time (reliability.md D2).
+    // Runs repeat: the generator starts from the same seed every time (docs/design/reliability.md D2).
     lua_getglobal(L, "math");
     lua_getfield(L, -1, "randomseed");
     lua_pushinteger(L, 20261121);
@@ -579,7 +579,7 @@ std::string ScriptHost::readSource(const std::filesystem::path& file, const std:
 void ScriptHost::pushChunk(std::string_view source, const std::string& name) {
   lua_State* L = lua_->lua_state();
   const std::string chunkname = name.starts_with("=") ? name : "@" + name;
-  // Mode "t": a precompiled (binary) chunk is refused before the parser runs (reliability.md §0.2).
+  // Mode "t": a precompiled (binary) chunk is refused before the parser runs (docs/design/reliability.md §0.2).
   const int status = luaL_loadbufferx(L, source.data(), source.size(), chunkname.c_str(), "t");
   if (status == LUA_OK) return;
   std::string message = status == LUA_ERRMEM                ? name + ": " + memoryMessage()

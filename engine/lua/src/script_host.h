@@ -1,4 +1,4 @@
-// The script host: one sandboxed Lua 5.4 state per scene (reliability.md §1.5).
+// The script host: one sandboxed Lua 5.4 state per scene (docs/design/reliability.md §1.5).
 //
 // - libraries: base (without dofile, loadfile; load is text-only; collectgarbage only "count"),
 //   math (math.random seeded by the host, so runs repeat), string (without dump), table. No io, os,

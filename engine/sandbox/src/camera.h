@@ -1,4 +1,4 @@
-// The view's camera in metres (origin.md §11): the world point at the middle of the window and the
+// The view's camera in metres (docs/design/thesis.md §11): the world point at the middle of the window and the
 // scale in pixels per metre. Screen coordinates are pixels from the window's top-left corner, y down;
 // world coordinates are metres, y up.
 //

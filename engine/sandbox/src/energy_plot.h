@@ -1,4 +1,4 @@
-// The live energy plot (origin.md §12, experiment 2, Fig. 5.3 as it happens): linear and rotational
+// The live energy plot (docs/design/thesis.md §12, experiment 2, Fig. 5.3 as it happens): linear and rotational
 // kinetic, potential and total energy against simulated time, over the last `window` seconds.
 #pragma once
 

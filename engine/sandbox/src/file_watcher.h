@@ -1,5 +1,5 @@
 // Watches a scene's files (the scene and every module it required) and reports, once per burst of
-// writes, that their content changed (reliability.md §3.2–3.3).
+// writes, that their content changed (docs/design/reliability.md §3.2–3.3).
 //
 // Editors save in many ways: in place (truncate + write), by writing a temporary file and renaming
 // it over the original (the original inode, and any watch on it, dies), by renaming the original

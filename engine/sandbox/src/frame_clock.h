@@ -1,5 +1,5 @@
 // How many world steps a frame runs, and how far between the last two states to draw it
-// (origin.md §3 "Game loop"; Glenn Fiedler, "Fix Your Timestep!", gafferongames.com 2004).
+// (docs/design/thesis.md §3 "Game loop"; Glenn Fiedler, "Fix Your Timestep!", gafferongames.com 2004).
 //
 // Fixed step (the default): real time accumulates and is consumed in steps of exactly dt, so the
 // simulation's results do not depend on the frame rate. What is left over (less than one step) is

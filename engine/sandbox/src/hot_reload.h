@@ -1,4 +1,4 @@
-// Building a scene beside the running one (reliability.md §3.1, "shadow world"): the new scene is
+// Building a scene beside the running one (docs/design/reliability.md §3.1, "shadow world"): the new scene is
 // loaded on a worker thread from its file while the old one keeps running and drawing; the caller
 // swaps it in only if the load succeeded. Each scene has its own Lua state, so the two never share
 // anything. A newer request supersedes an older one still in flight (its result is dropped), so a

@@ -1,4 +1,4 @@
-// The view's drawing (origin.md §11 "View"): implements the core's DebugDraw and the scenes'
+// The view's drawing (docs/design/thesis.md §11 "View"): implements the core's DebugDraw and the scenes'
 // OverlayDraw with OpenGL 3.3. Every primitive becomes triangles in one vertex buffer, drawn in the
 // order of the calls (later calls on top) with one draw call per frame. Lines are quads of a fixed
 // width in pixels (core-profile GL has no wide lines), and sizes given in pixels are converted

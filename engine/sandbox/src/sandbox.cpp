@@ -1,4 +1,4 @@
-// The sandbox's life cycle (origin.md §3 Algorithm 1 and §11): open the window → load the scene
+// The sandbox's life cycle (docs/design/thesis.md §3 Algorithm 1 and §11): open the window → load the scene
 // (PopulateWorld builds the model) → per frame: handle events, pick up file changes, simulate,
 // draw the world and the panels, sleep to the frame cap. Built on Dear ImGui's
 // example_sdl2_opengl3/main.cpp: SDL2 window + OpenGL 3.3 core context + ImGui's SDL2/OpenGL3

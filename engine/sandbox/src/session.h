@@ -1,5 +1,5 @@
 // The sandbox's state and the operations on it, independent of SDL, OpenGL and ImGui (so tests can
-// drive it): the running scene (the Model, origin.md §11), the camera and draw settings (the View's
+// drive it): the running scene (the Model, docs/design/thesis.md §11), the camera and draw settings (the View's
 // state), and what the Controller keeps between frames — loop timing, pause, selection, undo
 // history, hot reload, error overlays.
 #pragma once

@@ -1,4 +1,4 @@
-// The Controller's input handling (origin.md §11 "Events handled"): SDL mouse and keyboard events
+// The Controller's input handling (docs/design/thesis.md §11 "Events handled"): SDL mouse and keyboard events
 // become camera moves, edits and tool gestures on the Session. Events that Dear ImGui wants (the
 // cursor is over a panel, a text field has focus) are left to ImGui.
 #pragma once
@@ -28,7 +28,7 @@ struct Shortcut {
   const char* keys;
   const char* action;
 };
-// Every shortcut, for the F1 help and the README.
+// Every shortcut, for the F1 help and docs/sandbox.md.
 std::span<const Shortcut> shortcuts();
 const char* toolName(Tool tool);
 

@@ -1,4 +1,4 @@
-// Rigid bodies: static, kinematic or dynamic, made of one or more shapes (origin.md §3 "Bodies";
+// Rigid bodies: static, kinematic or dynamic, made of one or more shapes (docs/design/thesis.md §3 "Bodies";
 // docs/physics.md "Bodies").
 #pragma once
 

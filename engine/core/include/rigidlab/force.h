@@ -1,11 +1,11 @@
-// The force interface (origin.md §4): a force is evaluated on the state of its body (or two bodies)
+// The force interface (docs/design/thesis.md §4): a force is evaluated on the state of its body (or two bodies)
 // at a time, and answers with a force, a torque and an application point. New kinds of force need no
 // change to the core: derive from Force and hand it to World::addForce.
 //
 // Integrators call evaluate() once per stage on the stage's state: explicit and semi-implicit Euler
-// once per step, RK4 four times (origin.md §5). A force must therefore compute from its arguments
+// once per step, RK4 four times (docs/design/thesis.md §5). A force must therefore compute from its arguments
 // only and never cache a value between calls; a force sampled once per step would silently drop RK4
-// to first order (accuracy.md §0.6, tested in tests/core/test_integrators.cpp).
+// to first order (docs/design/accuracy.md §0.6, tested in tests/core/test_integrators.cpp).
 #pragma once
 
 #include <cstdint>
@@ -52,7 +52,7 @@ struct Wrench {
   }
 };
 
-// A force F applied at a world point P on a body: torque τ = (P − c) × F (origin.md §1).
+// A force F applied at a world point P on a body: torque τ = (P − c) × F (docs/design/thesis.md §1).
 inline Wrench atPoint(const BodyState& s, const Vec2& force, const Vec2& world_point) {
   return {force, cross(world_point - s.center, force)};
 }

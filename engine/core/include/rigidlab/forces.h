@@ -1,4 +1,4 @@
-// Built-in forces (origin.md §4). Gravity is a world setting (WorldDef::gravity), not a Force object:
+// Built-in forces (docs/design/thesis.md §4). Gravity is a world setting (WorldDef::gravity), not a Force object:
 // it acts on every dynamic body and RK4 needs to evaluate it only once per step.
 #pragma once
 
@@ -11,7 +11,7 @@ namespace rigidlab {
 // Hooke spring with optional linear damping along its axis, between a body point and a fixed world
 // anchor or between points of two bodies:
 //   F_a = [k (L − L0) + c (v_b − v_a)·u] u,   F_b = −F_a,   u = (p_b − p_a)/L,   L = |p_b − p_a|
-// (origin.md §1 F = −k x, §4 F = −k (current_length − length)). When L = 0 the direction is
+// (docs/design/thesis.md §1 F = −k x, §4 F = −k (current_length − length)). When L = 0 the direction is
 // undefined and the spring applies no force.
 struct SpringDef {
   BodyId a;                           // required
@@ -43,7 +43,7 @@ class SpringForce final : public Force {
   SpringDef def_;
 };
 
-// Linear and angular damper on one body (origin.md §1 F_b = −b v): F = −c v, τ = −c_ω ω.
+// Linear and angular damper on one body (docs/design/thesis.md §1 F_b = −b v): F = −c v, τ = −c_ω ω.
 struct DamperDef {
   BodyId body;                   // required
   double coefficient = 0.0;      // c [N·s/m] ≥ 0
@@ -66,7 +66,7 @@ class DamperForce final : public Force {
   DamperDef def_;
 };
 
-// The cursor drag force (origin.md §4 "mouse force", §11): a damped spring from a point on the body
+// The cursor drag force (docs/design/thesis.md §4 "mouse force", §11): a damped spring from a point on the body
 // to the cursor, its magnitude capped so a drag cannot launch a body or destabilise a stack:
 //   F = clamp(k (target − p) − c v_p, max_force)
 struct MouseForceDef {

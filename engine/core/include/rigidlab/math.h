@@ -10,7 +10,7 @@ namespace rigidlab {
 using Vec2 = Eigen::Vector2d;
 using Mat22 = Eigen::Matrix2d;
 
-// 2D cross products (origin.md §1: torque τ = r × F is a scalar in 2D).
+// 2D cross products (docs/design/thesis.md §1: torque τ = r × F is a scalar in 2D).
 // vector × vector → scalar: the z component of the 3D cross product.
 inline double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 // scalar × vector → vector: ω × r for an angular velocity ω about z, i.e. ω·perp(r).

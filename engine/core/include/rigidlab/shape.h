@@ -79,12 +79,12 @@ Shape transformShape(const Shape& shape, const Vec2& offset, double angle);
 // InputError for fewer than 3 points, a self-intersecting outline or zero area.
 std::vector<std::vector<Vec2>> decomposeConcave(std::span<const Vec2> outline);
 
-// Area, centroid and inertia (origin.md §3: polygon centroid, inertia about the centroid; disc ½mR²;
+// Area, centroid and inertia (docs/design/thesis.md §3: polygon centroid, inertia about the centroid; disc ½mR²;
 // capsule: rectangle plus two half discs, with the parallel-axis theorem). Segments have no area.
 MassData computeMass(const Shape& shape, double density);
 // Bounding box of the shape placed by `xf`.
 Aabb computeAabb(const Shape& shape, const Transform& xf);
-// Point-in-shape test (origin.md §7): circle |P − T| ≤ R; convex CCW polygon cross(B − A, P − A) ≥ 0
+// Point-in-shape test (docs/design/thesis.md §7): circle |P − T| ≤ R; convex CCW polygon cross(B − A, P − A) ≥ 0
 // for every edge AB; capsule: distance to the segment ≤ R. Segments contain no point. `p` is world.
 bool containsPoint(const Shape& shape, const Transform& xf, const Vec2& p);
 // Largest distance from the body origin to any point of the shape (for rotation bounds, CCD).

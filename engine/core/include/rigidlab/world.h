@@ -1,4 +1,4 @@
-// The world: owns bodies and forces and advances them in time (origin.md §6, Algorithm 4).
+// The world: owns bodies and forces and advances them in time (docs/design/thesis.md §6, Algorithm 4).
 //
 //   World world;                                   // defaults: WorldDef below
 //   BodyDef def; def.shape = makeCircle(0.5); def.position = {0, 5};
@@ -25,7 +25,7 @@
 
 namespace rigidlab {
 
-// Time integrators for the non-contact forces (origin.md §5; accuracy.md §2).
+// Time integrators for the non-contact forces (docs/design/thesis.md §5; docs/design/accuracy.md §2).
 enum class Integrator {
   ExplicitEuler,      // "euler":  x += h v_n,     v += h a_n           order 1, gains energy
   SemiImplicitEuler,  // "semi_implicit_euler": v += h a_n, x += h v_{n+1}   order 1, symplectic
@@ -42,7 +42,7 @@ enum class ContactSolver {
   Auto,                // "auto": islands with fewer than soft_step_points contact points by
                        //   sequential impulses, larger ones (piles, pyramids) by the soft step. The
                        //   default: exact small collisions and stacks, large piles that stand.
-  SequentialImpulses,  // "sequential_impulses": the thesis's solver (origin.md §8–10): `iterations`
+  SequentialImpulses,  // "sequential_impulses": the thesis's solver (docs/design/thesis.md §8–10): `iterations`
                        //   passes of impulses on the velocities (contact_solver.cpp), small islands
                        //   iterated to convergence, then position correction (position_correction.cpp).
                        //   Contacts are rigid; a pile of more than about 50 rows sinks and spreads.
@@ -57,7 +57,7 @@ std::string_view contactSolverName(ContactSolver);
 std::optional<ContactSolver> parseContactSolver(std::string_view name);
 std::string contactSolverNames();  // "auto, sequential_impulses, soft_step" for error messages
 
-// How penetration left after the velocity solve is removed (origin.md §9; sequential impulses only).
+// How penetration left after the velocity solve is removed (docs/design/thesis.md §9; sequential impulses only).
 enum class PositionCorrection {
   LinearProjection,      // "linear_projection": move both bodies apart along the normal by the
                          //   whole depth, without rotating them (the thesis's method)
@@ -78,7 +78,7 @@ enum class ImpactHandling {
             //   bodies at once) and the step continues from it (event_location.cpp). RK4 then keeps
             //   its order through isolated impacts. Other islands are handled once per step.
   PerStep,  // "per_step": contacts found and resolved once per step at the step's end (the thesis's
-            //   scheme, origin.md §5): any problem with a collision is first order in dt.
+            //   scheme, docs/design/thesis.md §5): any problem with a collision is first order in dt.
 };
 std::string_view impactHandlingName(ImpactHandling);
 std::optional<ImpactHandling> parseImpactHandling(std::string_view name);
@@ -91,8 +91,8 @@ enum class BroadPhaseKind {
 };
 
 struct WorldDef {
-  Vec2 gravity = Vec2(0.0, -9.80665);          // [m/s²], origin.md §1
-  Integrator integrator = Integrator::RungeKutta4;  // origin.md §5: RK4 for all ordinary forces
+  Vec2 gravity = Vec2(0.0, -9.80665);          // [m/s²], docs/design/thesis.md §1
+  Integrator integrator = Integrator::RungeKutta4;  // docs/design/thesis.md §5: RK4 for all ordinary forces
   ContactSolver contact_solver = ContactSolver::Auto;
   int soft_step_points = 256;                   // auto: islands with at least this many contact
                                                 //   points use the soft step, ≥ 1
@@ -135,7 +135,7 @@ struct WorldDef {
   // the step's start: a few bodies in free flight. Stacks, piles and resting bodies (touching
   // contacts) and jointed islands are handled once per step; so is every island while more than
   // impact_max_bodies dynamic bodies are awake, which keeps large scenes (a rain of 1000 discs)
-  // exactly as fast as before. Measured and explained in README "Impacts: located or once per step".
+  // exactly as fast as before. Measured and explained in docs/physics.md "Impacts: located or once per step".
   ImpactHandling impacts = ImpactHandling::Located;
   int impact_island_bodies = 8;   // ≥ 1
   int impact_max_bodies = 128;    // ≥ 0
@@ -161,7 +161,7 @@ struct WorldDef {
   double joint_hertz = 120.0;
   double joint_damping_ratio = 1.0;
   // Static friction (f_s) is used when the tangential speed at the start of the step is below this,
-  // dynamic friction (f_d) otherwise (origin.md §10, the "small ε"). [m/s] ≥ 0
+  // dynamic friction (f_d) otherwise (docs/design/thesis.md §10, the "small ε"). [m/s] ≥ 0
   double static_friction_speed = 0.01;
 };
 
@@ -308,7 +308,7 @@ class World {
   // in `time` [s] > 0 (b2Body_SetTargetTransform): v = Δc / t, ω = Δθ / t, with the centre of mass
   // moved as the origin moves to `position`. The body keeps that velocity until changed.
   void setTarget(BodyId id, const Vec2& position, double angle, double time);
-  // Instant change of momentum by the impulse J at a world point (origin.md §1, J = Δp).
+  // Instant change of momentum by the impulse J at a world point (docs/design/thesis.md §1, J = Δp).
   void applyImpulse(BodyId id, const Vec2& impulse, const Vec2& world_point);
   // Wakes a sleeping body and the bodies of its island. Every edit above wakes its body too.
   void wake(BodyId id);
@@ -363,7 +363,7 @@ class World {
   std::vector<JointBreakInfo> jointBreaks() const;
 
   // --- forces. `duration` [s]: the force acts for that much simulated time from now and is removed
-  // at the end of the step in which it runs out (origin.md §6); infinity = permanent. A step that
+  // at the end of the step in which it runs out (docs/design/thesis.md §6); infinity = permanent. A step that
   // straddles the end is split there, so the force acts for exactly `duration`. kNextStep: the
   // force acts during the next step only, whatever its length.
   static constexpr double kForever = std::numeric_limits<double>::infinity();
@@ -397,13 +397,13 @@ class World {
   // non-finite is put back where the step began and made static, and reported here).
   const std::vector<Incident>& incidents() const;
 
-  // Energies [J] (origin.md §12 experiment 2): kinetic Σ ½ m v² + ½ I ω²; potential of gravity
+  // Energies [J] (docs/design/thesis.md §12 experiment 2): kinetic Σ ½ m v² + ½ I ω²; potential of gravity
   // −m g·c (zero at the world origin) plus what the forces store (springs ½ k x²).
   double kineticEnergy() const;
   double potentialEnergy() const;
   double gravityPotentialEnergy() const;
 
-  // Topmost body with a shape that contains the world point (origin.md §7 point-in-shape), for picking.
+  // Topmost body with a shape that contains the world point (docs/design/thesis.md §7 point-in-shape), for picking.
   std::optional<BodyId> bodyAt(const Vec2& point) const;
 
   // --- queries (world_query.cpp): exact on every shape kind, served by a bounding-volume tree kept

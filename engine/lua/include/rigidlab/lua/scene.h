@@ -1,6 +1,6 @@
 // A Lua scene: a Lua 5.4 file that defines PopulateWorld(world) and optional hooks, run in its own
-// sandboxed Lua state. The public Lua API (names, fields, errors) is documented in README.md
-// ("Writing scenes"), docs/lua-api.md (bodies, shapes, joints, the world) and in
+// sandboxed Lua state. The public Lua API (names, fields, errors) is documented in
+// docs/scenes.md (writing scenes), docs/lua-api.md (bodies, shapes, joints, events, the world) and in
 // scripts/meta/rigidlab.lua for editors.
 //
 //   auto scene = rigidlab::lua::Scene::loadFile("scripts/scenes/pyramid.lua");
@@ -33,7 +33,7 @@ class SceneError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Limits on what one scene's scripts may consume (README "Security"). A scene can lower its own
+// Limits on what one scene's scripts may consume (docs/security.md). A scene can lower its own
 // memory cap (`scene = { memory_limit = 64 }`, MiB), never raise it.
 struct ScriptLimits {
   size_t memory_bytes = size_t{256} << 20;  // cap of the scene's Lua allocator

@@ -1,5 +1,5 @@
 // Text that comes from a scene (body names, the title, draw:text, print lines, error messages):
-// how much of it the host copies, and how it is shown. A scene is hostile (README "Security"):
+// how much of it the host copies, and how it is shown. A scene is hostile (docs/security.md):
 // its strings could be gigabytes long, or hold terminal escape sequences ("\27[2J") and bytes that
 // are not UTF-8, which would clear a terminal or make --json output unparseable.
 #pragma once
