@@ -20,6 +20,7 @@ packages=(
   xdotool                             # sandbox interaction test: real mouse and keys under Xvfb
   gnuplot-nox                         # accuracy-report pictures
   clang libclang-rt-14-dev            # libFuzzer targets and the sanitizer runtime (tests/fuzz)
+  libxml2-utils                       # xmllint: the test of rigidlab test checks its JUnit XML is well formed
 )
 sol2_version=3.5.0
 
