@@ -156,6 +156,10 @@ void findPairs(WorldImpl& w) {
   w.shape_views.resize(n);
   w.world_vertices.clear();
   w.world_normals.clear();
+  // The views point into world_vertices and world_normals as they grow; if either moved (it grew
+  // past its capacity: the first steps, new shapes), the pointers are set again below.
+  const size_t vertex_capacity = w.world_vertices.capacity(), normal_capacity = w.world_normals.capacity();
+  const bool joints = w.joints.size() > w.free_joints.size();  // some joint is alive
   for (size_t i = 0; i < n; ++i) {
     if (i + 4 < n) {  // each shape's vertices are a separate allocation: ask for them ahead
       const Shape& ahead = w.shapes[i + 4].geometry;
@@ -186,28 +190,37 @@ void findPairs(WorldImpl& w) {
         p.aabb.lower -= Vec2::Constant(shape.radius);
         p.aabb.upper += Vec2::Constant(shape.radius);
       }
-    } else {
-      p.aabb = computeAabb(shape, b.xf);
     }
     WorldImpl::ShapeView& view = w.shape_views[i];
     view.placed.shape = &shape;
     view.placed.xf = &b.xf;
     view.body = s.body.index;
+    view.type = shape.type;
+    view.radius = shape.radius;
+    if (shape.type == ShapeType::Circle) {
+      view.center = b.xf.apply(shape.center);  // computeAabb's box, from the centre placed once
+      p.aabb = {view.center - Vec2::Constant(shape.radius), view.center + Vec2::Constant(shape.radius)};
+    } else {
+      view.placed.poly = {w.world_vertices.data() + w.polygon_offset[i], w.world_normals.data() + w.polygon_offset[i],
+                          static_cast<int>(shape.vertices.size()), shape.extent};
+    }
+    view.extent = maxExtent(shape);
+    view.material = s.material;
     // A body with joints may be kept from colliding with its jointed partners (collide_connected).
-    const bool jointed = s.body.index < w.body_joints.size() && !w.body_joints[s.body.index].empty();
+    const bool jointed = joints && s.body.index < w.body_joints.size() && !w.body_joints[s.body.index].empty();
     view.special = s.sensor || !s.default_filter || jointed;
     // Inflated by half the contact margin each, so pairs within the margin are found.
     const Vec2 half_margin = Vec2::Constant(0.5 * w.def.contact_margin);
     p.aabb.lower -= half_margin;
     p.aabb.upper += half_margin;
   }
-  // The world polygons are complete (the vector no longer grows): point the views at them.
-  for (size_t i = 0; i < n; ++i) {
-    const Shape& shape = w.shapes[i].geometry;
-    if (!w.proxies[i].active || shape.type == ShapeType::Circle) continue;
-    const uint32_t at = w.polygon_offset[i];
-    w.shape_views[i].placed.poly = {&w.world_vertices[at], &w.world_normals[at], static_cast<int>(shape.vertices.size()),
-                                    shape.extent};
+  if (w.world_vertices.capacity() != vertex_capacity || w.world_normals.capacity() != normal_capacity) {
+    for (size_t i = 0; i < n; ++i) {  // the vectors moved: point the views at where they are now
+      WorldImpl::ShapeView& view = w.shape_views[i];
+      if (!w.proxies[i].active || view.type == ShapeType::Circle) continue;
+      view.placed.poly.vertices = w.world_vertices.data() + w.polygon_offset[i];
+      view.placed.poly.normals = w.world_normals.data() + w.polygon_offset[i];
+    }
   }
   PairLimit limit;
   limit.pairs = std::min(w.def.pair_cap_max, std::max(w.def.pair_cap, static_cast<size_t>(w.def.pair_cap_per_body) * bodies));

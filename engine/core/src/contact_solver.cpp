@@ -311,7 +311,7 @@ void convergeSmallIslands(WorldImpl& w, std::vector<SolverBody>& bodies, std::ve
       const int passes = (jointed ? kMoreJointIterations : kMoreIterations) * w.def.iterations;
       for (int it = w.def.iterations; it < passes; ++it) {
         double change = 0.0, size = 0.0;
-        for (size_t k = start; k < end; ++k) {  // the joints first, as in the passes above
+        for (size_t k = jointed ? start : end; k < end; ++k) {  // the joints first, as in the passes above
           if (order[k] < nc) continue;
           Joint& j = w.joints[joints[order[k] - nc]];
           const double p0 = impulseSize(j.impulses);
@@ -321,7 +321,7 @@ void convergeSmallIslands(WorldImpl& w, std::vector<SolverBody>& bodies, std::ve
           size = std::max(size, p1);
         }
         for (size_t k = start; k < end; ++k) {
-          if (order[k] >= nc) continue;
+          if (jointed && order[k] >= nc) continue;
           SolverContact& c = constraints[order[k]];
           const double p0 = c.p[0].pn, p1 = c.p[1].pn;
           solve(bodies, c);

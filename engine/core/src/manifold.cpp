@@ -84,19 +84,22 @@ Manifold toWorld(Manifold m, const Transform& xf) {
 
 }  // namespace
 
-Manifold collideCircles(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double margin) {
+Manifold collideCircleCentres(const Vec2& ca, double ra, const Vec2& cb, double rb, double margin) {
   Manifold m;
-  const Vec2 ca = xa.apply(a.center), cb = xb.apply(b.center);
   const Vec2 d = cb - ca;
   const double dist = d.norm();
-  const double separation = dist - a.radius - b.radius;
+  const double separation = dist - ra - rb;
   if (separation > margin) return m;
   // Contact on the line of centres (docs/design/thesis.md §7); coincident centres push apart along +y.
   m.normal = dist > 0.0 ? Vec2(d / dist) : Vec2(0.0, 1.0);
-  const Vec2 pa = ca + a.radius * m.normal, pb = cb - b.radius * m.normal;
+  const Vec2 pa = ca + ra * m.normal, pb = cb - rb * m.normal;
   m.points[0] = {0.5 * (pa + pb), separation, 0};
   m.count = 1;
   return m;
+}
+
+Manifold collideCircles(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double margin) {
+  return collideCircleCentres(xa.apply(a.center), a.radius, xb.apply(b.center), b.radius, margin);
 }
 
 Manifold collidePolygonAndCircle(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,

@@ -57,6 +57,8 @@ inline Manifold collide(const PlacedShape& a, const PlacedShape& b, double margi
 }
 
 // Points are reported when their separation is ≤ margin (margin 0: touching or overlapping).
+// Two circles by their centres in the world and radii (the narrow phase has the centres placed).
+Manifold collideCircleCentres(const Vec2& ca, double ra, const Vec2& cb, double rb, double margin);
 Manifold collideCircles(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double margin);
 Manifold collidePolygonAndCircle(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double margin);
 Manifold collidePolygons(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double margin);

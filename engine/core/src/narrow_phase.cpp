@@ -71,7 +71,9 @@ void narrowPhase(WorldImpl& w) {
       }
       continue;
     }
-    const Manifold m = collide(va.placed, vb.placed, w.def.contact_margin);
+    const Manifold m = va.type == ShapeType::Circle && vb.type == ShapeType::Circle
+                           ? collideCircleCentres(va.center, va.radius, vb.center, vb.radius, w.def.contact_margin)
+                           : collide(va.placed, vb.placed, w.def.contact_margin);
     if (m.count == 0) continue;
     // An awake body reaching a sleeping one wakes its island.
     if (a.isDynamic() && !a.awake) w.wakeIsland(ia);
@@ -101,11 +103,11 @@ void narrowPhase(WorldImpl& w) {
     }
     // Penetration the position pass leaves alone: WorldDef::allowed_penetration, but at most a tenth
     // of the smaller shape's size, so centimetre bodies are not allowed to sink half their height.
-    const BodyShape &sa = w.shapes[pair.a], &sb = w.shapes[pair.b];
-    c.slop = std::min(w.def.allowed_penetration, 0.1 * std::min(maxExtent(sa.geometry), maxExtent(sb.geometry)));
-    c.restitution = std::max(sa.material.restitution, sb.material.restitution);
-    c.friction = std::sqrt(sa.material.friction * sb.material.friction);
-    c.static_friction = std::sqrt(sa.material.static_friction * sb.material.static_friction);
+    const Material &ma = va.material, &mb = vb.material;
+    c.slop = std::min(w.def.allowed_penetration, 0.1 * std::min(va.extent, vb.extent));
+    c.restitution = std::max(ma.restitution, mb.restitution);
+    c.friction = std::sqrt(ma.friction * mb.friction);
+    c.static_friction = std::sqrt(ma.static_friction * mb.static_friction);
     addKey(w.contact_keys, c);
     // Touching from the first step a point overlaps until the contact ends (contact.h).
     c.touching = (had && prev[old].touching) || c.points[0].separation <= 0.0 || (c.count == 2 && c.points[1].separation <= 0.0);

@@ -305,10 +305,11 @@ static_assert(sizeof(SoftBody) == 9 * sizeof(double), "gather reads a SoftBody a
   transpose(row(b0, 0), row(b1, 0), row(b2, 0), row(b3, 0), v.vx, v.vy, v.w, v.dx);  // vx vy w dx
   transpose(row(b0, 4), row(b1, 4), row(b2, 4), row(b3, 4), v.dy, v.qc, v.qs, v.im);  // dy qc qs im
   v.ii = V{b0.ii, b1.ii, b2.ii, b3.ii};
-  // A kinematic body cannot be moved by impulses but moves (its velocity is not zero): like a
-  // dynamic body it is in one lane of a colour at most, and its velocity is written back.
-  const V zero = splat(0.0);
-  v.still = (v.im == zero) & (v.ii == zero) & (v.vx == zero) & (v.vy == zero) & (v.w == zero);
+  // Still: immovable (im = ii = 0) and not a moving kinematic body, which softStep marks with
+  // ii = −0.0 (the bits of +0.0 are all zero, those of −0.0 are not; as a factor both give zero).
+  // A moving kinematic body is in one lane of a colour at most, like a dynamic one, and its
+  // velocity is written back; a still body may be shared by several lanes.
+  v.still = (v.im == splat(0.0)) & (__builtin_bit_cast(M, v.ii) == M{0, 0, 0, 0});
   return v;
 }
 
@@ -717,6 +718,7 @@ void softStep(WorldImpl& w) {
     const Vec2 d = w.start_center[i] - b.center;
     angle[i] = w.start_angle[i] - b.angle;
     bodies[i] = {v0.x(), v0.y(), w0, d.x(), d.y(), std::cos(angle[i]), std::sin(angle[i]), b.inv_mass, b.inv_inertia};
+    if (b.isKinematic()) bodies[i].ii = -0.0;  // moves, though no impulse moves it (gather's still)
     kick[i] = {(b.velocity.x() - v0.x()) / substeps, (b.velocity.y() - v0.y()) / substeps,
                (b.angular_velocity - w0) / substeps, 0.0};
   }

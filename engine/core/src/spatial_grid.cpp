@@ -140,13 +140,16 @@ bool GridBroadPhase::findPairs(std::span<const Proxy> proxies, std::vector<BodyP
       tests += end - i - 1;
       const Proxy& p = proxies[entries_[i].proxy];
       bool full = tests > limit.tests;
-      for (size_t j = i + 1; j < end && !full; ++j) {
+      for (size_t j = full ? end : i + 1; j < end; ++j) {
         const Proxy& q = proxies[entries_[j].proxy];
         if ((p.is_static && q.is_static) || !p.aabb.overlaps(q.aabb)) continue;
         // Report the pair only in the cell of the intersection's lower-left corner.
         const Vec2 corner = p.aabb.lower.cwiseMax(q.aabb.lower);
         if (key(floorToInt(corner.x() * inv), floorToInt(corner.y() * inv)) != here) continue;
-        full = !emit(entries_[i].proxy, entries_[j].proxy);
+        if (!emit(entries_[i].proxy, entries_[j].proxy)) {
+          full = true;
+          break;
+        }
       }
       if (full) {
         noteOverflow(overflow, tests > limit.tests, end - start, proxies[entries_[start].proxy].aabb);
@@ -161,11 +164,14 @@ bool GridBroadPhase::findPairs(std::span<const Proxy> proxies, std::vector<BodyP
     const Proxy& big = proxies[l];
     tests += proxies.size();
     bool full = tests > limit.tests;
-    for (uint32_t i = 0; i < proxies.size() && !full; ++i) {
+    for (uint32_t i = 0, count = full ? 0 : static_cast<uint32_t>(proxies.size()); i < count; ++i) {
       const Proxy& p = proxies[i];
       if (i == l || !p.active || (big.is_static && p.is_static) || !big.aabb.overlaps(p.aabb)) continue;
       if (is_large_[i] && i < l) continue;  // that pair was reported from i's side
-      full = !emit(l, i);
+      if (!emit(l, i)) {
+        full = true;
+        break;
+      }
     }
     if (full) {
       noteOverflow(overflow, tests > limit.tests, crowdAround(proxies, l), big.aabb);

@@ -176,9 +176,16 @@ struct WorldImpl {
   std::vector<Vec2> world_vertices, world_normals;  // every polygon placed in the world this step
   std::vector<uint32_t> polygon_offset;             // per shape slot: where its polygon starts in them
   // Per shape slot, written by the broad phase each step: what the narrow phase reads per pair.
+  // What the narrow phase reads of a shape for every pair it is in, gathered once per step by the
+  // broad phase, so a pair reads two of these instead of two BodyShapes and their bodies.
   struct ShapeView {
     PlacedShape placed;  // the geometry, its body's transform, the world polygon
+    Vec2 center;         // circles: the centre in the world (manifold.h collideCircleCentres)
+    double radius;       // Shape::radius
+    double extent;       // maxExtent of the geometry: bounds the contact's slop
+    Material material;
     uint32_t body;       // slot
+    ShapeType type;
     bool special;        // a sensor, a filter other than the default, or a jointed body: the narrow phase looks closer
   };
   std::vector<ShapeView> shape_views;
