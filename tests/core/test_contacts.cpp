@@ -422,14 +422,12 @@ TEST_CASE("mass ratios: heavy boxes on a 1 kg box hold with sub-centimetre penet
   }
 }
 
-// KNOWN BUG, not fixed here (marked should_fail: it fails today, and doctest reports it when it
-// starts to pass). Under RK4 a crate held by static friction on an accelerating kinematic platform
-// runs h v / 2 behind it: the contact displacement moves a body by κ h Δv with κ = ½ for RK4
-// (position_correction.cpp), as if the friction impulse were a force spread over the step, while
-// the kinematic body moves by h v_new. Their velocities agree; their positions do not (2.6 cm at
-// 3.1 m/s and 60 Hz in scripts/scenes/moving_platform.lua, which runs semi-implicit Euler, where
-// the crate rides exactly). Moving kinematic bodies by the same rule would change golden hashes.
-TEST_CASE("a crate held by friction moves with its kinematic platform under RK4" * doctest::should_fail()) {
+// Under RK4 a crate held by static friction on an accelerating kinematic platform once ran h v / 2
+// behind it: the contact displacement moved it by κ h Δv with κ = ½, as if the friction impulse
+// were a force spread over the step, while the kinematic body moves by h v_new. The part of Δv
+// that follows the platform's velocity jump now moves the crate for the whole step
+// (position_correction.cpp).
+TEST_CASE("a crate held by friction moves with its kinematic platform under RK4") {
   World w;  // RK4, the default
   BodyDef p;
   p.type = BodyType::Kinematic;
@@ -448,6 +446,6 @@ TEST_CASE("a crate held by friction moves with its kinematic platform under RK4"
   }
   // The platform ran a h² Σ i = 1.53 m; the crate must have kept its place on it.
   const double offset = w.body(crate).position().x() - w.body(platform).position().x();
-  CAPTURE(offset);  // today −h v / 2 = −0.025 m
+  CAPTURE(offset);  // −h v / 2 = −0.025 m before the fix
   CHECK(std::abs(offset) < 1e-6);
 }
