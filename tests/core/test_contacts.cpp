@@ -449,3 +449,41 @@ TEST_CASE("a crate held by friction moves with its kinematic platform under RK4"
   CAPTURE(offset);  // −h v / 2 = −0.025 m before the fix
   CHECK(std::abs(offset) < 1e-6);
 }
+
+TEST_CASE("a crate held by friction on a kinematic platform that starts to turn keeps its place on it") {
+  // The rotating counterpart of the test above: the platform's angular velocity jumps every step,
+  // and the crate, 1 m from the axis, must follow it at once, ΔV = Δω × (c − c_k)
+  // (position_correction.cpp).
+  for (Integrator integrator : {Integrator::RungeKutta4, Integrator::SemiImplicitEuler, Integrator::ExplicitEuler}) {
+    CAPTURE(integratorName(integrator));
+    WorldDef def;
+    def.integrator = integrator;
+    def.sleeping = false;
+    World w(def);
+    BodyDef p;
+    p.type = BodyType::Kinematic;
+    p.shape = makeBox(3.0, 0.2);
+    p.friction = 0.8;
+    const BodyId platform = w.createBody(p);
+    BodyDef c;
+    c.shape = makeBox(0.4, 0.4);
+    c.position = Vec2(1.0, 0.3);
+    c.friction = 0.8;
+    const BodyId crate = w.createBody(c);
+    for (int i = 0; i < 30; ++i) w.step(1.0 / 60.0);  // settle at rest
+    const Vec2 local0 = w.body(platform).xf.applyInverse(w.body(crate).position());
+    const double h = 1.0 / 60.0, alpha = 0.5;  // rad/s²: 0.13 rad after 0.75 s, far from slipping
+    for (int i = 1; i <= 45; ++i) {
+      w.setAngularVelocity(platform, alpha * i * h);
+      w.step(h);
+    }
+    const Vec2 local = w.body(platform).xf.applyInverse(w.body(crate).position());
+    CAPTURE(local.x() - local0.x());
+    CAPTURE(local.y() - local0.y());
+    MESSAGE(integratorName(integrator) << ": the crate moved " << (local - local0).norm() << " m on the platform");
+    // Measured 1.5e-4 m under semi-implicit Euler (whose displacement the rule leaves alone: the
+    // crate's own turn within a step), 2.1e-4 RK4, 3.2e-4 explicit Euler; without the rule RK4's
+    // crate moved 3.3 mm and explicit Euler's 5.8 mm.
+    CHECK((local - local0).norm() < 5e-4);
+  }
+}
