@@ -333,6 +333,12 @@ Problem loadProblem(const std::filesystem::path& file) {
     if (!(*l > 0)) f.fail("long_run", "must be > 0");
     p.long_run = *l;
   }
+  if (const auto t = f.number("period")) {
+    if (!(*t > 0)) f.fail("period", "must be > 0");
+    p.period = *t;
+    p.period_body = f.string("period_body").value_or("");
+    if (p.period_body.empty()) f.fail("period_body", "must name the body whose period `period` is");
+  }
   p.note = f.string("note").value_or("");
   return p;
 }

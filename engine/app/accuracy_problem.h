@@ -50,6 +50,10 @@ struct Problem {
   bool energy = false, momentum = false, angmom = false, velocity = false;  // extra metrics
   std::map<std::string, Expected> expected;  // by integrator name; defaults filled in
   std::optional<double> long_run;            // [s] energy-over-time run at dt = 1/60
+  // The exact period [s] of an oscillation about angle 0 of the body `period_body`: the run
+  // measures its period from the times its angle crosses 0 (accuracy_run.cpp).
+  std::optional<double> period;
+  std::string period_body;
   std::string note;
   std::shared_ptr<ProblemScript> script;  // holds accuracy.energy when the scene gives one
 

@@ -223,7 +223,7 @@ void writeCsv(const ReportInput& in, const std::filesystem::path& dir) {
   csv << "scene,integrator,dt,substeps,steps,force_evals,lua_calls,t_end,wall_s_min,wall_s_median,repeats,"
          "err_linf,err_final,err_l2,energy_drift_max,energy_drift_trend,mom_err,angmom_err,order_pairwise,status,"
          "engine_version,git_hash,build,cpu,"
-         "k,group,reference_length,wall_s_iqr,batch,vel_err_final,pairs_max,contact_points_max,stages,stopped_at\n";
+         "k,group,reference_length,wall_s_iqr,batch,vel_err_final,pairs_max,contact_points_max,stages,stopped_at,period_err\n";
   for (const Row& r : in.rows) {
     const Problem& p = *r.problem;
     const ErrorPass& e = r.error;
@@ -239,7 +239,8 @@ void writeCsv(const ReportInput& in, const std::filesystem::path& dir) {
         << ',' << in.build.cpu << ',' << r.k << ',' << groupName(p.group) << ',' << num(p.reference_length) << ','
         << (r.timing ? num(r.timing->iqr_s) : "") << ',' << (r.timing ? std::to_string(r.timing->batch) : "")
         << ',' << opt(p.velocity, e.vel_err_final) << ',' << e.pairs_max << ',' << e.contact_points_max << ','
-        << noCommas(e.stages()) << ',' << (e.status == "ok" ? "" : num(e.stopped_at)) << '\n';
+        << noCommas(e.stages()) << ',' << (e.status == "ok" ? "" : num(e.stopped_at)) << ','
+        << opt(p.period.has_value(), e.period_err) << '\n';
   }
 
   // Energy over time of the long runs: t, then E(t)/E0 per integrator (empty after a stop).
@@ -329,6 +330,37 @@ int writeSummary(const ReportInput& in, const std::filesystem::path& dir, bool s
         if (in.timed) md << ' ' << (r->timing ? fixed(r->timing->min_s * 1e3, 3) + " ms" : "–") << " |";
         md << ' ' << r->error.status << " |\n";
       }
+
+  // Periods: the measured period against the exact one, for every step.
+  bool any_period = false;
+  for (const Problem* p : in.problems) any_period |= p->period.has_value();
+  if (any_period) {
+    md << "\n## Period\n\n";
+    md << "|T/T_exact − 1| of the problems with an exact period, the period measured from the times the body's angle "
+          "crosses 0.\n\n";
+    for (const Problem* p : in.problems) {
+      if (!p->period) continue;
+      md << "**" << p->name << "** (T = " << num(*p->period, 10) << " s)\n\n| integrator |";
+      int k_max = 0;
+      for (const Row& r : in.rows)
+        if (r.problem == p) k_max = std::max(k_max, r.k);
+      for (int k = 0; k <= k_max; ++k) md << ' ' << dtLabel(k) << " |";
+      md << "\n|---|";
+      for (int k = 0; k <= k_max; ++k) md << "---|";
+      md << '\n';
+      for (const std::string& i : in.integrators) {
+        md << "| " << i << " |";
+        for (int k = 0; k <= k_max; ++k) {
+          const Row* found = nullptr;
+          for (const Row* r : rowsOf(in, p, i))
+            if (r->k == k) found = r;
+          md << ' ' << (found ? sci(found->error.period_err) : "–") << " |";
+        }
+        md << '\n';
+      }
+      md << '\n';
+    }
+  }
 
   // What each accuracy costs: the fastest configuration that reaches an error.
   if (in.timed) {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
 #include "rigidlab/lua/scene.h"
@@ -31,6 +32,23 @@ void momenta(const World& w, Vec2& p, double& l) {
     p += b.mass * b.velocity;
     l += b.mass * cross(b.center, b.velocity) + b.inertia * b.angular_velocity;
   }
+}
+
+// The time in [0, h] where the cubic Hermite interpolant of an angle through (θa, ωa) at 0 and
+// (θb, ωb) at h crosses 0 (θa and θb of opposite signs or one of them 0). The cubic is 4th-order
+// accurate, so the crossing time does not hide RK4's order behind the interpolation's.
+double crossing(double ta, double ya, double wa, double h, double yb, double wb) {
+  const auto y = [&](double s) {  // s = t / h
+    const double s2 = s * s, s3 = s2 * s;
+    return (2 * s3 - 3 * s2 + 1) * ya + (s3 - 2 * s2 + s) * h * wa + (-2 * s3 + 3 * s2) * yb + (s3 - s2) * h * wb;
+  };
+  double lo = 0.0, hi = 1.0;  // bisection: the sign change is bracketed
+  const bool rising = ya < yb;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    ((y(mid) < 0.0) == rising ? lo : hi) = mid;
+  }
+  return ta + 0.5 * (lo + hi) * h;
 }
 
 }  // namespace
@@ -115,6 +133,16 @@ ErrorPass errorPass(const Problem& problem, Integrator integrator, double dt, do
     if (l0 != 0.0) r.angmom_err = std::max(r.angmom_err, std::abs(l - l0) / std::abs(l0));
   };
 
+  // The period: the times the body's angle crosses 0, T = 2 (t_last − t_first) / (crossings − 1).
+  std::optional<BodyId> period_id;
+  if (problem.period)
+    for (const BodyId id : dynamic)
+      if (world.body(id).name == problem.period_body) period_id = id;
+  if (problem.period && !period_id) throw std::runtime_error(problem.name + ": no body named " + problem.period_body);
+  std::vector<double> crossings;
+  double last_angle = period_id ? world.body(*period_id).angle : 0.0;
+  double last_omega = period_id ? world.body(*period_id).angular_velocity : 0.0;
+
   sample(0.0, steps == 0);
   for (long n = 1; n <= steps; ++n) {
     const long calls = scene->luaCalls();
@@ -145,11 +173,24 @@ ErrorPass errorPass(const Problem& problem, Integrator integrator, double dt, do
       r.stopped_at = t;
       break;
     }
+    if (period_id) {
+      const Body& b = world.body(*period_id);
+      if ((last_angle < 0.0 && b.angle >= 0.0) || (last_angle > 0.0 && b.angle <= 0.0))
+        crossings.push_back(crossing(t - dt, last_angle, last_omega, dt, b.angle, b.angular_velocity));
+      last_angle = b.angle;
+      last_omega = b.angular_velocity;
+    }
     if (n % every == 0 || n == steps) sample(t, n == steps);
     if (r.status != "ok") {
       r.stopped_at = t;
       break;
     }
+  }
+  if (problem.period) {
+    r.period_err = crossings.size() < 2 ? std::numeric_limits<double>::infinity()
+                                        : std::abs(2.0 * (crossings.back() - crossings.front()) /
+                                                       static_cast<double>(crossings.size() - 1) / *problem.period -
+                                                   1.0);
   }
   r.err_l2 = samples > 0 ? std::sqrt(sum_sq / static_cast<double>(samples)) : 0.0;
   if (problem.energy && ne >= 2) {

@@ -36,6 +36,7 @@ struct ErrorPass {
   double energy_drift_trend = 0.0;  // least-squares slope of E(t)/E0 [1/s]
   double mom_err = 0.0;     // max |P − P0| [kg·m/s]
   double angmom_err = 0.0;  // max |L − L0| / |L0| (about the origin)
+  double period_err = 0.0;  // |T_measured / T − 1| (Problem::period), ∞ if fewer than two crossings
   long force_evals = 0, lua_calls = 0;  // during the steps only
   int pairs_max = 0, contact_points_max = 0;
   long impacts = 0;  // impacts located inside steps (ImpactHandling::Located)

@@ -60,5 +60,9 @@ CaseResult pyramid(bool quick);
 CaseResult fastBodies(bool quick);
 CaseResult deepOverlap(bool quick);
 CaseResult scale(bool quick);
+// stability_joint_cases.cpp: a chain released horizontally, a 100:1 load, a chain whirled fast.
+CaseResult jointChain(bool quick);
+CaseResult jointHeavyLoad(bool quick);
+CaseResult jointWhirl(bool quick);
 
 }  // namespace rigidlab::app::stability

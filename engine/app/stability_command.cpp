@@ -1,6 +1,6 @@
 // rigidlab stability: the stiff and extreme cases (docs/design/accuracy.md §4, issue 5), each with a pass/fail
 // rule and its figures, written as stability.json and stability.md. The cases are in
-// stability_cases.cpp and stability_contact_cases.cpp.
+// stability_cases.cpp, stability_contact_cases.cpp and stability_joint_cases.cpp.
 #include <unistd.h>
 
 #include <chrono>

@@ -448,6 +448,9 @@ const std::vector<Case>& cases() {
       {"long_runs", "spring and Kepler orbit for 1e5 steps: energy drift and trend (S9)", longRuns},
       {"scale", "1 cm and 1 km bodies, density ratio 1e6, far from the origin (S10)", scale},
       {"frame_rate", "frame times 1/30, 1/60, 1/144 through the fixed-step loop (S11)", frameRate},
+      {"joint_chain", "30 links of 0.5 m, 1 kg released horizontally: stretch, pin gaps", jointChain},
+      {"joint_heavy_load", "100 kg box on 10 links of 1 kg (100:1): stretch", jointHeavyLoad},
+      {"joint_whirl", "20-link chain whirled at 6 rad/s: stretch, pin gaps, energy", jointWhirl},
   };
   return list;
 }

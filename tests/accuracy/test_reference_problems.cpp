@@ -137,12 +137,37 @@ TEST_CASE("reference problem: bouncing_ball_drag") { checkProblem("bouncing_ball
 TEST_CASE("reference problem: collision_1d") { checkProblem("collision_1d"); }
 TEST_CASE("reference problem: collision_oblique") { checkProblem("collision_oblique"); }
 TEST_CASE("reference problem: collision_friction") { checkProblem("collision_friction"); }
+TEST_CASE("reference problem: pendulum_revolute") { checkProblem("pendulum_revolute"); }
+
+TEST_CASE("pendulum_revolute: the measured period converges to the exact 4 K(k) / ω0 at first order") {
+  // A wrong T (the small-angle 2π/ω0 is 25 % short, a K off in its 4th digit) would leave a floor
+  // under which the period error cannot fall; the joint solve makes it first order (the error
+  // halves with the step).
+  const Problem problem = loadProblem(problemDirectory() / "pendulum_revolute.lua");
+  REQUIRE(problem.period);
+  CHECK(*problem.period == doctest::Approx(2.6725273101).epsilon(1e-9));
+  for (const rigidlab::Integrator integrator : {rigidlab::Integrator::SemiImplicitEuler, rigidlab::Integrator::RungeKutta4}) {
+    double previous = 0.0;
+    for (int k = 4; k <= kMaxK; ++k) {
+      const double e = errorPass(problem, integrator, sweepDt(k), problem.t_end, false).period_err;
+      CAPTURE(k);
+      CAPTURE(e);
+      CHECK(std::isfinite(e));
+      if (k > 4) {
+        CHECK(previous / e > 1.7);
+        CHECK(previous / e < 2.6);
+      }
+      previous = e;
+    }
+    CHECK(previous < 1.5e-3);  // at dt = 1/7680
+  }
+}
 
 TEST_CASE("reference problems: every file is gated above, with stored errors for every integrator") {
   std::set<std::string> gated = {"free_fall", "drag_projectile", "sho", "damped_under", "damped_critical", "damped_over",
                                  "two_body_spring", "kepler", "time_limited_force", "time_limited_naive", "incline",
                                  "disc_slide_roll", "bouncing_ball", "bouncing_ball_drag", "collision_1d", "collision_oblique",
-                                 "collision_friction"};
+                                 "collision_friction", "pendulum_revolute"};
   for (const auto& file : problemFiles(problemDirectory())) {
     const std::string name = file.stem().string();
     CAPTURE(name);

@@ -404,15 +404,11 @@ TEST_CASE("updateJoint checks a motor joint's new target like createJoint does")
   CHECK(w.jointState(id).world_anchor_a.x() == 2.0);
 }
 
-// KNOWN BUG, not fixed here (marked should_fail: it fails today, and doctest reports it when it
-// starts to pass). Body damping is applied to the velocity after the step's gravity was added,
-// v ← (v + h g) / (1 + h c) (integrator.cpp), and the joints and contacts are solved afterwards.
-// So a damped body held still by a joint weighs m g / (1 + h c): the pin below holds 8.915 N, not
-// 9.807 N (h c = 0.1), and a damped crank on a stalled motor stalls at the wrong angle
-// (scripts/scenes/windmill.lua); a damped box resting on the ground sinks into it by the contact
-// slop (5.6 mm here). Damping the previous velocity only, v ← v / (1 + h c) + h g, as Box2D v3
-// does, would hold m g; it changes the golden hashes of the scenes with damped bodies.
-TEST_CASE("a damped body held by a pin weighs m g" * doctest::should_fail()) {
+// Body damping was once applied after the step's gravity was added, v ← (v + h g) / (1 + h c), and
+// the joints solved afterwards, so a damped body held still weighed m g / (1 + h c) (8.915 N, not
+// 9.807 N, at h c = 0.1). It now damps the velocity the step starts with, v ← v / (1 + h c) + h g
+// (integrator.cpp).
+TEST_CASE("a damped body held by a pin weighs m g") {
   World w;
   BodyDef d;
   d.shape = makeCircle(0.2);

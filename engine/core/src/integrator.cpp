@@ -118,6 +118,20 @@ bool dampingTooStiffForRk4(WorldImpl& w, double t0, double h, const char* only) 
 
 void integrateInterval(WorldImpl& w, double t0, double h, const char* only) {
   const uint32_t n = static_cast<uint32_t>(w.bodies.size());
+  // Body damping (BodyDef::linear_damping, angular_damping) first, implicit over the interval, on
+  // the velocity the interval starts with; then the integrator adds what the forces and gravity
+  // give (for semi-implicit Euler v ← v / (1 + h c) + h a, as Box2D v3 does):
+  //   v ← v / (1 + h c)
+  // which shrinks a velocity towards zero for any h c ≥ 0 and never flips it. Damping after the
+  // integrator, v ← (v + h g) / (1 + h c), would also shrink the velocity gravity gave in this
+  // step, before the joints and contacts take it away: a damped body held still would then weigh
+  // m g / (1 + h c) on its pin or its floor, and a resting one sink by the contact slop.
+  for (uint32_t i = 0; i < n; ++i) {
+    if (!isMoving(w, i, only)) continue;
+    Body& b = w.bodies[i];
+    if (b.linear_damping > 0.0) b.velocity *= 1.0 / (1.0 + h * b.linear_damping);
+    if (b.angular_damping > 0.0) b.angular_velocity *= 1.0 / (1.0 + h * b.angular_damping);
+  }
   bool any_force = false, any_dependent = false;
   for (const ForceEntry& f : w.forces) {
     if (!selected(f, only)) continue;
@@ -246,16 +260,8 @@ void integrateInterval(WorldImpl& w, double t0, double h, const char* only) {
       break;
     }
   }
-  // Body damping (BodyDef::linear_damping, angular_damping), implicit over the interval:
-  //   v ← v / (1 + h c)
-  // which shrinks a velocity towards zero for any h c ≥ 0 and never flips it.
-  for (uint32_t i = 0; i < n; ++i) {
-    if (!isMoving(w, i, only)) continue;
-    Body& b = w.bodies[i];
-    if (b.linear_damping > 0.0) b.velocity *= 1.0 / (1.0 + h * b.linear_damping);
-    if (b.angular_damping > 0.0) b.angular_velocity *= 1.0 / (1.0 + h * b.angular_damping);
-    WorldImpl::syncTransform(b);
-  }
+  for (uint32_t i = 0; i < n; ++i)
+    if (isMoving(w, i, only)) WorldImpl::syncTransform(w.bodies[i]);
 }
 
 void beginIntegration(WorldImpl& w) {
@@ -279,10 +285,30 @@ void beginIntegration(WorldImpl& w) {
 }
 
 void moveKinematicBodies(WorldImpl& w, double dt) {
-  // Kinematic bodies move by their velocity alone: exact for a constant velocity.
-  for (size_t k = 0; k < w.bodies.size(); ++k) {
+  // Kinematic bodies move by their velocity alone: exact for a constant velocity. A velocity set
+  // between steps is a jump at the start of this one; it is kept (kinematic_jump) for the contact
+  // displacement of the bodies the kinematic body carries (position_correction.cpp).
+  const size_t n = w.bodies.size();
+  w.kinematic_velocity.resize(n, Vec2::Zero());
+  w.kinematic_angular_velocity.resize(n, 0.0);
+  w.kinematic_uid.resize(n, 0);
+  w.kinematic_jump.resize(n, Vec2::Zero());
+  w.kinematic_angular_jump.resize(n, 0.0);
+  w.kinematic_jumped = false;
+  for (size_t k = 0; k < n; ++k) {
     Body& b = w.bodies[k];
-    if (!w.alive[k] || !b.isKinematic() || !b.enabled || (b.velocity == Vec2::Zero() && b.angular_velocity == 0.0)) continue;
+    if (!w.alive[k] || !b.isKinematic() || !b.enabled) {
+      w.kinematic_uid[k] = 0;
+      continue;
+    }
+    const bool known = w.kinematic_uid[k] == b.uid;  // else it was made kinematic (or created) just now
+    w.kinematic_jump[k] = known ? Vec2(b.velocity - w.kinematic_velocity[k]) : Vec2::Zero();
+    w.kinematic_angular_jump[k] = known ? b.angular_velocity - w.kinematic_angular_velocity[k] : 0.0;
+    w.kinematic_jumped |= w.kinematic_jump[k] != Vec2::Zero() || w.kinematic_angular_jump[k] != 0.0;
+    w.kinematic_velocity[k] = b.velocity;
+    w.kinematic_angular_velocity[k] = b.angular_velocity;
+    w.kinematic_uid[k] = b.uid;
+    if (b.velocity == Vec2::Zero() && b.angular_velocity == 0.0) continue;
     b.center += dt * b.velocity;
     b.angle += dt * b.angular_velocity;
     WorldImpl::syncTransform(b);

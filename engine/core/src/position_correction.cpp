@@ -38,6 +38,7 @@
 // instead of contacts pushing against each other; velocities are not touched.
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "joint_solver.h"
 #include "stages.h"
@@ -117,28 +118,68 @@ void nonlinearGaussSeidel(WorldImpl& w) {
   }
 }
 
+// A kinematic body whose velocity was set between steps jumps to it at the start of the step and
+// moves by h v_new (integrator.cpp). What it carries by friction follows the jump at once, by an
+// impulse, not by a force spread over the step: that part of the body's velocity change moves it
+// for the whole step (τ = h), and only the rest by the contact's τ. Otherwise, under RK4 (κ = ½), a
+// crate on an accelerating platform trails it by h v / 2. The part is the jump of the carrying body
+// at the carried one's centre, ΔV = Δv_k + Δω_k × (c − c_k), scaled by how much of it the body took,
+// s = clamp(Δv·ΔV / |ΔV|², 0, 1) (1 when held by static friction, less when it slides):
+//   Δc = τ Δv + (h − τ) s ΔV,   Δθ = τ Δω + (h − τ) s Δω_k
+// The carrier is the jumping kinematic body the body presses hardest (Σ P of their contact points).
 void applyContactDisplacement(WorldImpl& w) {
+  const size_t n = w.bodies.size();
   // Impulse-weighted overlap time per body.
-  w.overlap_time.assign(w.bodies.size(), 0.0);
-  w.overlap_weight.assign(w.bodies.size(), 0.0);
+  w.overlap_time.assign(n, 0.0);
+  w.overlap_weight.assign(n, 0.0);
+  const bool carrying = w.kinematic_jumped && w.kinematic_uid.size() == n;
+  if (carrying) {
+    w.carrier.assign(n, UINT32_MAX);
+    w.carrier_weight.assign(n, 0.0);
+  }
+  const auto jumped = [&](uint32_t k) {
+    const Body& b = w.bodies[k];
+    return b.isKinematic() && w.kinematic_uid[k] == b.uid &&
+           (w.kinematic_jump[k] != Vec2::Zero() || w.kinematic_angular_jump[k] != 0.0);
+  };
   for (uint32_t k : w.solved) {
     const Contact& c = w.contacts[k];
+    double total = 0.0;
     for (int i = 0; i < c.count; ++i) {
       const ContactPoint& cp = c.points[i];
       const double p = cp.normal_impulse;
+      total += p;
       w.overlap_time[c.a] += p * cp.overlap_time;
       w.overlap_time[c.b] += p * cp.overlap_time;
       w.overlap_weight[c.a] += p;
       w.overlap_weight[c.b] += p;
     }
+    if (!carrying) continue;
+    for (auto [carried, by] : {std::pair{c.a, c.b}, std::pair{c.b, c.a}}) {
+      if (total > w.carrier_weight[carried] && jumped(by)) {
+        w.carrier_weight[carried] = total;
+        w.carrier[carried] = by;
+      }
+    }
   }
-  for (size_t i = 0; i < w.bodies.size(); ++i) {
+  for (size_t i = 0; i < n; ++i) {
     if (!w.alive[i] || w.overlap_weight[i] <= 0.0) continue;
     Body& b = w.bodies[i];
     if (!w.isActive(static_cast<uint32_t>(i))) continue;
     const double tau = w.overlap_time[i] / w.overlap_weight[i];
-    b.center += tau * (b.velocity - w.solve_start_velocity[i]);
-    b.angle += tau * (b.angular_velocity - w.solve_start_angular_velocity[i]);
+    const Vec2 dv = b.velocity - w.solve_start_velocity[i];
+    const double dw = b.angular_velocity - w.solve_start_angular_velocity[i];
+    const Vec2 center = b.center;
+    b.center += tau * dv;
+    b.angle += tau * dw;
+    if (!carrying || w.carrier[i] == UINT32_MAX || tau >= w.dt) continue;
+    const uint32_t k = w.carrier[i];
+    const Vec2 jump = w.kinematic_jump[k] + cross(w.kinematic_angular_jump[k], center - w.bodies[k].center);
+    const double size = jump.squaredNorm();
+    if (!(size > 0.0)) continue;
+    const double s = std::clamp(dv.dot(jump) / size, 0.0, 1.0);
+    b.center += ((w.dt - tau) * s) * jump;
+    b.angle += ((w.dt - tau) * s) * w.kinematic_angular_jump[k];
   }
 }
 

@@ -151,6 +151,7 @@ BodyId World::createBody(const BodyDef& def) {
     body.velocity = velocity;
     body.angular_velocity = body.fixed_rotation && body.isDynamic() ? 0.0 : angular_velocity;
   }
+  if (body.isKinematic()) w.recordKinematicVelocity(index);
   return id;
 }
 
@@ -256,7 +257,9 @@ void World::setType(BodyId id, BodyType type) {
   if (type == BodyType::Dynamic && hasShapeWithoutArea(w, b))
     throw InputError("type", "a body with a segment or chain shape cannot be dynamic: segments have no area (use a capsule or a thin box)");
   w.wakeIsland(id.index);
+  const bool became_kinematic = type == BodyType::Kinematic && !b.isKinematic();
   b.type = type;
+  if (became_kinematic) w.recordKinematicVelocity(id.index);
   ++w.static_version;
   if (type == BodyType::Dynamic) b.frozen = false;
   if (b.isStatic()) {

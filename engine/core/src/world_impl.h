@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <memory>
 #include <vector>
 
@@ -141,6 +142,29 @@ struct WorldImpl {
   std::vector<double> overlap_weight;     // per slot: Σ P
   std::vector<Vec2> correction_start;     // per slot: centre before position correction
   std::vector<double> correction_start_angle;
+  // Kinematic bodies' velocity changes between steps (integrator.cpp moveKinematicBodies), which the
+  // contact displacement of what they carry takes as impulsive (position_correction.cpp).
+  std::vector<Vec2> kinematic_velocity;          // per slot: the velocity it moved with this step
+  std::vector<double> kinematic_angular_velocity;
+  std::vector<uint32_t> kinematic_uid;           // per slot: the body those are of (0: none yet)
+  std::vector<Vec2> kinematic_jump;              // per slot: velocity now minus the previous step's
+  std::vector<double> kinematic_angular_jump;
+  bool kinematic_jumped = false;                 // some kinematic body's velocity changed this step
+  // The kinematic body's velocity now counts as the one it moved with (created kinematic with a
+  // velocity, or made kinematic): no jump at the next step.
+  void recordKinematicVelocity(uint32_t slot) {
+    const size_t n = std::max<size_t>(bodies.size(), slot + 1);
+    kinematic_velocity.resize(n, Vec2::Zero());
+    kinematic_angular_velocity.resize(n, 0.0);
+    kinematic_uid.resize(n, 0);
+    kinematic_jump.resize(n, Vec2::Zero());
+    kinematic_angular_jump.resize(n, 0.0);
+    kinematic_velocity[slot] = bodies[slot].velocity;
+    kinematic_angular_velocity[slot] = bodies[slot].angular_velocity;
+    kinematic_uid[slot] = bodies[slot].uid;
+  }
+  std::vector<uint32_t> carrier;                 // per slot: the jumping kinematic body it presses most
+  std::vector<double> carrier_weight;            // per slot: Σ P of its contacts with that body
 
   std::unique_ptr<BroadPhase> broad_phase;
   std::vector<Proxy> proxies;
