@@ -71,9 +71,14 @@ void narrowPhase(WorldImpl& w) {
       }
       continue;
     }
+    // The two commonest pairs directly, the others through the table (manifold.h); the kinds from
+    // the views, not from the shapes, which are further away in memory.
+    const double margin = w.def.contact_margin;
     const Manifold m = va.type == ShapeType::Circle && vb.type == ShapeType::Circle
-                           ? collideCircleCentres(va.center, va.radius, vb.center, vb.radius, w.def.contact_margin)
-                           : collide(va.placed, vb.placed, w.def.contact_margin);
+                           ? collideCircleCentres(va.center, va.radius, vb.center, vb.radius, margin)
+                       : va.type == ShapeType::Polygon && vb.type == ShapeType::Polygon
+                           ? collidePolygons(va.placed.poly, vb.placed.poly, margin)
+                           : kCollideTable[static_cast<int>(va.type)][static_cast<int>(vb.type)](va.placed, vb.placed, margin);
     if (m.count == 0) continue;
     // An awake body reaching a sleeping one wakes its island.
     if (a.isDynamic() && !a.awake) w.wakeIsland(ia);
