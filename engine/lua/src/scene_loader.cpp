@@ -1,6 +1,7 @@
 // Loading a scene and running its hooks (docs/design/thesis.md §3 and §11: PopulateWorld builds the model).
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -342,7 +343,9 @@ void Scene::step(double dt) {
     throw SceneError(impl_->name + ": step: " + e.what());
   }
   noteJointBreaks(*impl_);
+  const auto events_start = std::chrono::steady_clock::now();
   deliverEvents(*impl_);
+  impl_->event_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - events_start).count();
   if (defined(impl_->on_step)) call(*impl_, impl_->on_step, "OnStep", impl_->world_handle, dt);
 }
 
@@ -467,6 +470,7 @@ std::vector<Scene::ExactState> Scene::exact(double t) {
 }
 
 long Scene::luaCalls() const { return impl_->host->calls; }
+double Scene::eventSeconds() const { return impl_->event_seconds; }
 
 std::filesystem::path scriptsDirectory() { return dataDirectory("scripts", "RIGIDLAB_SCRIPTS"); }
 
