@@ -169,13 +169,41 @@ void call(Scene::Impl& s, const sol::object& f, std::string_view name, const Arg
 }
 
 // --- event hooks (lua_events.h): called after a step, before OnStep, each under its own budget.
+// All of them in one protected call (a thousand contact events are common), each call in a budget
+// window of its own, as call() opens for the other hooks.
 void deliverEvents(Scene::Impl& s) {
   bool any = false;
   for (const EventHook& h : eventHooks()) any = any || defined(s.*h.slot);
   if (!any) return;  // no Lua call, nothing made
+  ScriptHost& host = *s.host;
+  // The window of one hook call; notes on closing whether it was spent, which errorText needs to
+  // know after the protected call has closed it.
+  struct Window {
+    Window(Budget& b, bool& spent) : budget(b), spent(spent), scope(b, Budget::Kind::Hook) {}
+    ~Window() { spent = budget.expired(); }
+    Budget& budget;
+    bool& spent;
+    Budget::Scope scope;
+  };
   std::vector<EventCall> calls;
-  if (auto error = s.host->run([&] { calls = eventCalls(s); })) throw SceneError(s.host->errorText(*error, "events"));
-  for (const EventCall& c : calls) call(s, *c.hook, c.name, s.world_handle, c.first, c.second);
+  std::string_view running = "events";  // what an error happened in
+  bool spent = false;
+  auto error = host.run([&] {
+    lua_State* L = host.L();
+    pushEventCalls(s, calls);
+    const int args = lua_gettop(L);
+    for (const EventCall& c : calls) {
+      running = c.name;
+      ++host.calls;
+      const Window window(host.budget(), spent);
+      c.hook->push(L);
+      s.world_handle.push(L);
+      lua_rawgeti(L, args, c.first);
+      if (c.second) lua_rawgeti(L, args, c.second);
+      lua_call(L, c.second ? 3 : 2, 0);
+    }
+  });
+  if (error) throw SceneError(host.errorText(std::move(*error), running, spent));
 }
 
 // The steps of load() that touch the state, each inside ScriptHost::run.
