@@ -46,7 +46,7 @@ struct Scene::Impl {
   // key → function), made on first use, so a scene without them holds nothing for events.
   sol::object on_contact_begin, on_contact_end, on_hit, on_sensor_begin, on_sensor_end, on_joint_break;
   sol::table pre_solve_functions;
-  double event_seconds = 0.0;  // Scene::eventSeconds
+  double event_seconds = 0.0, event_cpu_seconds = 0.0;  // Scene::eventSeconds, eventCpuSeconds
 
   // --- sandbox mod hooks (scene_controls.cpp, lua_mouse_event.cpp)
   sol::object on_mouse, on_control;  // OnMouse, OnControl, or nil

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <fstream>
 #include <sstream>
 
@@ -166,6 +167,12 @@ void callReading(Scene::Impl& s, const sol::object& f, std::string_view name, Re
 template <typename... Args>
 void call(Scene::Impl& s, const sol::object& f, std::string_view name, const Args&... args) {
   callReading(s, f, name, [](lua_State*) {}, args...);
+}
+
+double threadCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 // --- event hooks (lua_events.h): called after a step, before OnStep, each under its own budget.
@@ -372,7 +379,9 @@ void Scene::step(double dt) {
   }
   noteJointBreaks(*impl_);
   const auto events_start = std::chrono::steady_clock::now();
+  const double cpu_start = threadCpuSeconds();
   deliverEvents(*impl_);
+  impl_->event_cpu_seconds = threadCpuSeconds() - cpu_start;
   impl_->event_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - events_start).count();
   if (defined(impl_->on_step)) call(*impl_, impl_->on_step, "OnStep", impl_->world_handle, dt);
 }
@@ -499,6 +508,7 @@ std::vector<Scene::ExactState> Scene::exact(double t) {
 
 long Scene::luaCalls() const { return impl_->host->calls; }
 double Scene::eventSeconds() const { return impl_->event_seconds; }
+double Scene::eventCpuSeconds() const { return impl_->event_cpu_seconds; }
 
 std::filesystem::path scriptsDirectory() { return dataDirectory("scripts", "RIGIDLAB_SCRIPTS"); }
 
