@@ -41,6 +41,18 @@ double percentile(std::vector<double> v, double p) {  // as the peers: the ceil(
   return v[std::min(idx, v.size() - 1)];
 }
 
+// The probe's series (median and interquartile range, µs) and figures, as JSON members.
+std::string sampleMembers(const BenchSamples& samples) {
+  std::string s;
+  for (const auto& [name, v] : samples.us) {
+    s += ", \"" + name + "_us_median\": " + fmt(median(v)) + ", \"" + name +
+         "_us_iqr\": " + fmt(percentile(v, 0.75) - percentile(v, 0.25)) + ", \"" + name +
+         "_samples\": " + std::to_string(v.size());
+  }
+  for (const auto& [name, x] : samples.figures) s += ", \"" + name + "\": " + fmt(x);
+  return s;
+}
+
 std::string array(const std::vector<double>& v) {
   std::string s = "[";
   for (size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + fmt(v[i]);
@@ -55,6 +67,7 @@ std::string runScene(const BenchScene& scene, int reps) {
   long lua_calls = 0, steps = 0;
   int contacts = 0, dynamic = 0;
   std::string metrics;
+  BenchSamples samples;  // over all repetitions
   for (int rep = 0; rep < reps; ++rep) {
     const auto t0 = Clock::now();
     BenchWorld bw = scene.build();
@@ -69,7 +82,11 @@ std::string runScene(const BenchScene& scene, int reps) {
     for (int i = 0; i < scene.steps; ++i) {
       const auto a = Clock::now();
       if (bw.before_step) bw.before_step(w, i);
-      w.step(scene.dt);
+      if (bw.scene_steps) {
+        bw.scene->step(scene.dt);
+      } else {
+        w.step(scene.dt);
+      }
       times.push_back(std::chrono::duration<double, std::milli>(Clock::now() - a).count());
       const StepStats& s = w.stats();
       stages.integrate_ms += s.integrate_ms;
@@ -81,6 +98,7 @@ std::string runScene(const BenchScene& scene, int reps) {
       stages.finish_ms += s.finish_ms;
       if (!bw.bodies.empty()) tracker.observe(scene.kind, bw, i, scene.dt);
       if (in_suite) suite.observe(w, i);
+      if (scene.probe) scene.probe(bw, i, samples);
     }
     lua_calls += bw.luaCalls() - calls_before;
     steps += scene.steps;
@@ -100,6 +118,9 @@ std::string runScene(const BenchScene& scene, int reps) {
         }
     dynamic = w.stats().dynamic_bodies;
     metrics = in_suite ? suiteMetrics(w, suite) : bw.bodies.empty() ? "{}" : benchMetrics(scene, bw, tracker);
+  }
+  if (const std::string members = sampleMembers(samples); !members.empty()) {  // into {…} or {}
+    metrics = metrics == "{}" ? "{" + members.substr(2) + "}" : metrics.substr(0, metrics.size() - 1) + members + "}";
   }
   const double n = static_cast<double>(steps);
   std::string s = "{\"engine\": \"rigidlab\", \"version\": \"0.1.0\", \"build\": \"release\", \"scene\": \"" +

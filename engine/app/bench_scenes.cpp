@@ -367,6 +367,8 @@ const std::vector<BenchScene>& benchScenes() {
        luaSprings},
     };
     addSuiteScenes(v);
+    addQueryScenes(v);
+    addEventScenes(v);
     return v;
   }();
   return scenes;

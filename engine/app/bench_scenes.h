@@ -7,6 +7,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <unordered_map>
@@ -37,6 +38,9 @@ struct BenchWorld {
   double cont_min_x = 0, cont_max_x = 0, cont_floor = 0;  // rain container interior
   // Edits the scene makes before a step (Box2D v3's rain adds and removes ragdolls); timed with it.
   std::function<void(World&, int step)> before_step;
+  // Step through lua::Scene::step (the event hooks and OnStep run after the world's step) instead
+  // of World::step alone.
+  bool scene_steps = false;
   World& get() { return scene ? scene->world() : *world; }
   long luaCalls() const { return scene ? scene->luaCalls() : 0; }
 };
@@ -50,6 +54,13 @@ struct BenchTracker {
   void observe(const std::string& kind, BenchWorld& w, int step, double dt);
 };
 
+// What a scene's probe measured after its steps (outside the timed step): times in µs by series
+// name, reported as each series' median and interquartile range, and figures reported as given.
+struct BenchSamples {
+  std::map<std::string, std::vector<double>> us;
+  std::map<std::string, double> figures;
+};
+
 struct BenchScene {
   std::string name;         // what the command line names: "pyramid40"
   std::string kind;         // the peers' scene name: "pyramid"
@@ -58,6 +69,9 @@ struct BenchScene {
   int steps = 600;
   double dt = 1.0 / 60.0;
   std::function<BenchWorld()> build;
+  // Called after every step (its time is not the step's): a scene that measures something other
+  // than the step (queries, event delivery) records it here.
+  std::function<void(BenchWorld&, int step, BenchSamples&)> probe = nullptr;
 };
 
 const std::vector<BenchScene>& benchScenes();
@@ -72,6 +86,11 @@ struct SuiteTracker {
   void observe(World& w, int step);
 };
 std::string suiteMetrics(World& w, const SuiteTracker& tracker);
+
+// The query benchmarks (bench_queries.cpp): ray casts and box queries against 10 000 bodies.
+void addQueryScenes(std::vector<BenchScene>& scenes);
+// The event delivery benchmark (bench_events.cpp): 1000 contact begin events to a Lua hook.
+void addEventScenes(std::vector<BenchScene>& scenes);
 
 // Solver settings every bench world starts from (rigidlab's defaults unless `rigidlab bench`
 // is told otherwise), so one run can show what sub-steps or iterations cost and buy.

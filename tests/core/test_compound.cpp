@@ -77,7 +77,7 @@ TEST_CASE("compound mass: a ring of eight circles, I = Σ (½ m r² + m R²)") {
   CHECK(b.inertia == Approx(8 * (0.5 * m * r * r + m * R * R)));
 }
 
-TEST_CASE("one-shape bodies keep their values exactly; mass and density options spread over shapes") {
+TEST_CASE("one-shape bodies keep their values exactly, mass and density options spread over shapes") {
   World w;
   BodyDef d;
   d.shape = makeBox(2, 1, Vec2(1, 0));
@@ -98,7 +98,7 @@ TEST_CASE("one-shape bodies keep their values exactly; mass and density options 
   CHECK(w.body(c).local_center.x() == Approx(0.5));
 }
 
-TEST_CASE("removing a shape recomputes the mass; a shapeless dynamic body is a unit point mass") {
+TEST_CASE("removing a shape recomputes the mass, a shapeless dynamic body is a unit point mass") {
   World w;
   const BodyId b = bodyWith(w);
   CHECK(w.body(b).mass == 1.0);
@@ -115,7 +115,7 @@ TEST_CASE("removing a shape recomputes the mass; a shapeless dynamic body is a u
   CHECK_FALSE(w.isValid(c));  // shapes go with their body
 }
 
-TEST_CASE("segments and chains: no area, so only static and kinematic bodies; chains only static") {
+TEST_CASE("segments and chains: no area, so only static and kinematic bodies, chains only static") {
   World w;
   const BodyId dyn = bodyWith(w);
   CHECK(test::errorOf([&] { add(w, dyn, makeSegment({0, 0}, {1, 0})); }) ==
@@ -175,7 +175,7 @@ TEST_CASE("filtering: categories and masks, groups that always or never collide"
   CHECK(w.body(high).position().y() == Approx(0.5).epsilon(0.01));  // on the floor, inside the other
 }
 
-TEST_CASE("concave outline: split into convex pieces with the same area; a self-crossing one is refused") {
+TEST_CASE("concave outline: split into convex pieces with the same area, a self-crossing one is refused") {
   const std::vector<Vec2> l = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
   const auto pieces = decomposeConcave(l);
   CHECK(pieces.size() == 2);
@@ -237,7 +237,7 @@ TEST_CASE("kinematic bodies push dynamic bodies in their way, in both contact so
   }
 }
 
-TEST_CASE("kinematic set_target reaches the pose in the given time; static bodies refuse velocities") {
+TEST_CASE("kinematic set_target reaches the pose in the given time, static bodies refuse velocities") {
   World w;
   BodyDef d;
   d.type = BodyType::Kinematic;

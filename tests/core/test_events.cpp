@@ -88,7 +88,7 @@ TEST_CASE("contact events: nothing is kept for shapes that did not ask, everythi
   CHECK(begins == 1);
 }
 
-TEST_CASE("sensors: begin and end as a ball passes; static and sleeping visitors count; a fast ball does not skip a thin sensor") {
+TEST_CASE("sensors: begin and end as a ball passes, static and sleeping visitors count, a fast ball does not skip a thin sensor") {
   World w;
   BodyDef zone;
   zone.type = BodyType::Static;
@@ -170,7 +170,7 @@ TEST_CASE("one-way platform: jumped through from below, stood on from above") {
   CHECK(w.body(jumper).position().y() == Approx(2.1 + 0.25).epsilon(0.01));  // landed on top and stays
 }
 
-TEST_CASE("pre-solve callback: only for flagged shapes; returning false lets a body through") {
+TEST_CASE("pre-solve callback: only for flagged shapes, returning false lets a body through") {
   World w;
   BodyDef g;
   g.type = BodyType::Static;

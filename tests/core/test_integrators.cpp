@@ -219,7 +219,7 @@ TEST_CASE("time-limited force: acts for exactly its duration, then is removed at
   CHECK(std::abs(w.body(body).velocity.x() - 5.25) < 1e-12);
 }
 
-TEST_CASE("two-body spring: momentum conserved by every integrator; RK4 matches the closed form") {
+TEST_CASE("two-body spring: momentum conserved by every integrator, RK4 matches the closed form") {
   for (Integrator integrator : {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler, Integrator::RungeKutta4}) {
     CAPTURE(integratorName(integrator));
     World w;

@@ -94,7 +94,7 @@ TEST_CASE("revolute: a chain of 30 links released horizontally stays within 0.5 
   }
 }
 
-TEST_CASE("revolute motor: a wheel driven at 2 rad/s turns at 2 rad/s to 1e-6; the torque it needs is read back") {
+TEST_CASE("revolute motor: a wheel driven at 2 rad/s turns at 2 rad/s to 1e-6, the torque it needs is read back") {
   for (ContactSolver solver : {ContactSolver::SequentialImpulses, ContactSolver::SoftStep}) {
     WorldDef def;
     def.contact_solver = solver;
@@ -172,7 +172,7 @@ TEST_CASE("gear: two wheels geared 2:1 keep angle_a + 2 angle_b constant to 1e-9
   CHECK(std::abs(w.body(big).angular_velocity) > 1.0);  // still turning
 }
 
-TEST_CASE("pulley: length_a + ratio · length_b is conserved; the heavier side goes down") {
+TEST_CASE("pulley: length_a + ratio · length_b is conserved, the heavier side goes down") {
   World w;
   const BodyId left = box(w, 0.5, 0.5, {-2, 0}, 2.0);
   const BodyId right = box(w, 0.5, 0.5, {2, 0}, 1.0);
@@ -227,7 +227,7 @@ TEST_CASE("prismatic: slides along its axis only, stops at its limit, and its mo
   }
 }
 
-TEST_CASE("weld and distance: a welded hammer keeps its shape; a rope is slack below its length and taut at it") {
+TEST_CASE("weld and distance: a welded hammer keeps its shape, a rope is slack below its length and taut at it") {
   World w;
   const BodyId handle = box(w, 0.1, 1.0, {0, 0}, 0.5);
   const BodyId head = box(w, 0.6, 0.2, {0, 0.6}, 3.0);
@@ -306,7 +306,7 @@ TEST_CASE("breaking: a weld over its break force is removed and reported with th
   CHECK(w.jointBreaks().empty());
 }
 
-TEST_CASE("joints: validation names the field; removed with a body; bodies joined do not collide unless asked") {
+TEST_CASE("joints: validation names the field, removed with a body, bodies joined do not collide unless asked") {
   World w;
   const BodyId a = box(w, 1, 1, {0, 0});
   const BodyId s = test::addBox(w, 1, 1, {3, 0}, true);

@@ -61,7 +61,7 @@ std::vector<double> runPyramid(int n, int steps) {
 
 }  // namespace
 
-TEST_CASE("soft step: a pyramid of 30 rows stands for 10 s; sequential impulses let its rows slide") {
+TEST_CASE("soft step: a pyramid of 30 rows stands for 10 s, sequential impulses let its rows slide") {
   World soft(softDef());
   const BodyId top = pyramid(soft, 30);
   const Vec2 start = soft.body(top).center;
@@ -166,7 +166,7 @@ TEST_CASE("soft step: a body near a surface that no impulse touches keeps the in
   CHECK(without.y() == Approx(10.0 - 0.5 * 10.0 * 1.0).epsilon(1e-12));
 }
 
-TEST_CASE("soft step: restitution bounces at the impact speed; momentum is kept") {
+TEST_CASE("soft step: restitution bounces at the impact speed, momentum is kept") {
   // Equal discs head on, e = 1, no gravity: they swap velocities.
   World w(softDef());
   w.setGravity(Vec2::Zero());
@@ -235,7 +235,7 @@ std::vector<double> runCircles(int count, int steps, bool boxes) {
 
 }  // namespace
 
-TEST_CASE("soft step: one-point groups take a pass of their own with the same bits; circles settle") {
+TEST_CASE("soft step: one-point groups take a pass of their own with the same bits, circles settle") {
   for (const bool boxes : {false, true}) {
     CAPTURE(boxes);
     softStepOnePointPass(false);

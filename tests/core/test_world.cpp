@@ -9,7 +9,7 @@
 using namespace rigidlab;
 using doctest::Approx;
 
-TEST_CASE("bodies: mass from density or from a given mass; centre of mass off the origin") {
+TEST_CASE("bodies: mass from density or from a given mass, centre of mass off the origin") {
   World w;
   BodyDef d;
   d.shape = makeBox(2, 1, Vec2(1, 0));  // shape centred 1 m right of the body origin
@@ -30,7 +30,7 @@ TEST_CASE("bodies: mass from density or from a given mass; centre of mass off th
   CHECK(B.inertia == Approx(10.0 * 5.0 / 12.0));
 }
 
-TEST_CASE("bodies: static ones do not move; switching type at run time") {
+TEST_CASE("bodies: static ones do not move, switching type at run time") {
   World w;
   const BodyId box = test::addBox(w, 1, 1, {0, 10}, true);
   for (int i = 0; i < 30; ++i) w.step(1.0 / 60.0);
@@ -103,7 +103,7 @@ TEST_CASE("energies: kinetic ½mv² + ½Iω², gravity −m g·c, springs ½kx²
   CHECK(w.potentialEnergy() == Approx(2 * 9.80665 * 3 + 0.5 * 10.0 * 4.0));
 }
 
-TEST_CASE("springs: default rest length is the distance at creation; force F = −k (L − L0)") {
+TEST_CASE("springs: default rest length is the distance at creation, force F = −k (L − L0)") {
   World w;
   w.setGravity(Vec2::Zero());
   const BodyId a = test::addCircle(w, 0.1, {0, 0});
@@ -287,7 +287,7 @@ TEST_CASE("a force that throws leaves the world as before the step") {
   w.setVelocity(a, {0, 1});  // the world is usable again (not left locked)
 }
 
-TEST_CASE("uids count bodies in creation order and are never reused; kNextStep forces last one step") {
+TEST_CASE("uids count bodies in creation order and are never reused, kNextStep forces last one step") {
   World w;
   w.setGravity(Vec2::Zero());
   const BodyId a = test::addCircle(w, 0.5, {0, 0});
@@ -434,7 +434,7 @@ TEST_CASE("sleeping: bodies created asleep cost nothing until touched, and only 
   CHECK(w.body(wall[0]).position().x() > 5.1);
 }
 
-TEST_CASE("sleeping: forces that may change keep their bodies awake; springs at rest let them sleep") {
+TEST_CASE("sleeping: forces that may change keep their bodies awake, springs at rest let them sleep") {
   World w;
   const BodyId hanging = test::addCircle(w, 0.2, {0, 0});
   SpringDef s;

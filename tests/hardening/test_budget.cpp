@@ -232,7 +232,7 @@ TEST_CASE("budget: a hook that ran out once runs normally on the next call (the 
   for (int i = 0; i < 20; ++i) CHECK_NOTHROW(scene->step());
 }
 
-TEST_CASE("budget: a scene that ran out in PopulateWorld is destroyed; new scenes load and run in the same process") {
+TEST_CASE("budget: a scene that ran out in PopulateWorld is destroyed, new scenes load and run in the same process") {
   for (int i = 0; i < 3; ++i) {
     CHECK(timed([] { load("function PopulateWorld(world) while true do end end", budgets(0.05, 0.05)); })
               .message.ends_with("script ran longer than its budget of 50 ms (infinite loop?)"));
@@ -302,7 +302,7 @@ TEST_CASE("caps: a catastrophic pattern is refused at once, with the function an
   }
 }
 
-TEST_CASE("caps: patterns just inside the limit finish quickly; ordinary text processing is not refused") {
+TEST_CASE("caps: patterns just inside the limit finish quickly, ordinary text processing is not refused") {
   struct Shape {
     const char* pattern;
     const char* unit;  // the subject is this, repeated
@@ -345,7 +345,7 @@ TEST_CASE("caps: patterns just inside the limit finish quickly; ordinary text pr
   }
 }
 
-TEST_CASE("caps: table.sort beyond 100000 elements compares in Lua, so the budget stops it; the order is the same") {
+TEST_CASE("caps: table.sort beyond 100000 elements compares in Lua, so the budget stops it, the order is the same") {
   const Outcome o = timed([] {
     load("function PopulateWorld(world)\n  local t = {}\n  for i = 1, 2e6 do t[i] = (i * 7919) % 1000003 end\n"
          "  table.sort(t)\nend",
@@ -377,7 +377,7 @@ TEST_CASE("caps: table.sort beyond 100000 elements compares in Lua, so the budge
   CHECK(scene != nullptr);
 }
 
-TEST_CASE("caps: table.move refuses ranges beyond 1e7 elements; string.rep fills by doubling, exactly like Lua's") {
+TEST_CASE("caps: table.move refuses ranges beyond 1e7 elements, string.rep fills by doubling, exactly like Lua's") {
   CHECK(timed([] { load("function PopulateWorld(world)\n  table.move({}, 1, 1e12, 1)\nend"); }).message ==
         "test.lua:2: table.move: moves at most 10000000 elements per call, asked for 1000000000000");
   CHECK(timed([] { load("function PopulateWorld(world)\n  table.move({}, -5, math.maxinteger, 1)\nend"); }).message ==
@@ -411,7 +411,7 @@ TEST_CASE("caps: table.move refuses ranges beyond 1e7 elements; string.rep fills
                  "not enough memory (the scene's limit is 256 MiB)"));
 }
 
-TEST_CASE("caps: load() takes text chunks up to 1 MiB; parsing the largest takes well under the budget") {
+TEST_CASE("caps: load() takes text chunks up to 1 MiB, parsing the largest takes well under the budget") {
   CHECK(timed([] { load("function PopulateWorld(world)\n  load(('-'):rep(2^20 + 1))\nend"); }).message ==
         "test.lua:2: PopulateWorld: load: chunk is 1048577 bytes, larger than the limit of 1048576");
   const Outcome o = timed([] {
@@ -425,7 +425,7 @@ TEST_CASE("caps: load() takes text chunks up to 1 MiB; parsing the largest takes
 
 // --- M: memory
 
-TEST_CASE("memory: bombs end with the scene's limit in the message; a scene can lower its cap, never raise it (M1)") {
+TEST_CASE("memory: bombs end with the scene's limit in the message, a scene can lower its cap, never raise it (M1)") {
   const char* bombs[] = {
       "local s = 'x' while true do s = s .. s end",
       "local t = {} local i = 0 while true do i = i + 1 t[i] = i end",

@@ -76,6 +76,7 @@ const Golden kGolden[] = {
 // The proof scenes of the shapes and joints issues (12, 13).
     {"scripts/scenes/breakable_wall.lua", "2babfa1c7254a9c7"},
     {"scripts/scenes/capsule_slope.lua", "5440293494013e91"},
+    {"scripts/scenes/capsule_walker.lua", "22cde8c08b920ac3"},
     {"scripts/scenes/car.lua", "3f66f04efc111177"},
     {"scripts/scenes/chain.lua", "665d3089c4e0d112"},
     {"scripts/scenes/collision_groups.lua", "0a0c6eb7e9d73462"},

@@ -32,7 +32,7 @@ const Body& named(const Scene& s, const char* name) { return s.world().body(*s.w
 
 }  // namespace
 
-TEST_CASE("NaN firewall: an extreme spring freezes its body, names body, step and force; the box under it stays finite") {
+TEST_CASE("NaN firewall: an extreme spring freezes its body, names body, step and force, the box under it stays finite") {
   auto scene = load(R"lua(
     scene = { dt = 1/60 }
     function PopulateWorld(world)
@@ -76,7 +76,7 @@ TEST_CASE("NaN firewall: a Lua force with a huge finite output blows up its body
   for (const char* n : {"n1", "n2", "n3"}) CHECK_FALSE(named(*scene, n).frozen);
 }
 
-TEST_CASE("NaN firewall: a velocity set huge from Lua overflows the position later; frozen, neighbours fine") {
+TEST_CASE("NaN firewall: a velocity set huge from Lua overflows the position later, frozen, neighbours fine") {
   auto scene = load(R"lua(
     scene = { gravity = {0, 0} }
     function PopulateWorld(world)

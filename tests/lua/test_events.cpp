@@ -47,7 +47,7 @@ TEST_CASE("events: a scene with no event hook and no flagged shape makes no Lua 
   CHECK(hooked->luaCalls() == before);
 }
 
-TEST_CASE("events: every begin event is one hook call; the cost of delivering 1000 of them") {
+TEST_CASE("events: every begin event is one hook call, the cost of delivering 1000 of them") {
   constexpr int kBoxes = 1000;
   auto scene = load("function PopulateWorld(world)\n" + boxes(kBoxes, "contact_events = true") +
                     "end\nbegins = 0\nfunction OnContactBegin(world, c) begins = begins + 1 end\n"
@@ -70,7 +70,7 @@ TEST_CASE("events: every begin event is one hook call; the cost of delivering 10
   scene->runCheck();
 }
 
-TEST_CASE("events: hooks may edit the world; a body removed by an earlier hook is seen as removed by a later one") {
+TEST_CASE("events: hooks may edit the world, a body removed by an earlier hook is seen as removed by a later one") {
   auto scene = load(R"lua(
     seen = {}
     function PopulateWorld(world)
@@ -96,7 +96,7 @@ TEST_CASE("events: hooks may edit the world; a body removed by an earlier hook i
   scene->runCheck();
 }
 
-TEST_CASE("events: a failing hook or pre_solve is one message at its line; a failed pre_solve undoes the step") {
+TEST_CASE("events: a failing hook or pre_solve is one message at its line, a failed pre_solve undoes the step") {
   CHECK(errorOf("function PopulateWorld(world)\n" + boxes(1, "contact_events = true") +
                     "end\nfunction OnContactBegin(world, c)\n  error('boom')\nend",
                 30) == "test.lua:6: OnContactBegin: boom");
@@ -150,7 +150,7 @@ TEST_CASE("events: pre_solve is asked only about its shape's contacts, and false
   scene->runCheck();
 }
 
-TEST_CASE("events: OnJointBreak gets the broken joint; shape event fields read back what was given") {
+TEST_CASE("events: OnJointBreak gets the broken joint, shape event fields read back what was given") {
   auto scene = load(R"lua(
     function PopulateWorld(world)
       world:add_box{ width = 20, height = 1, position = {0, -0.5}, static = true }

@@ -58,7 +58,7 @@ end)lua";
 
 }  // namespace
 
-TEST_CASE("mod hooks: OnMouse gets kind, button, position, screen, modifiers and wheel; true consumes") {
+TEST_CASE("mod hooks: OnMouse gets kind, button, position, screen, modifiers and wheel, true consumes") {
   std::vector<std::string> log;
   auto scene = load(kPrintingScene, &log);
   REQUIRE(scene->hasOnMouse());
@@ -88,7 +88,7 @@ TEST_CASE("mod hooks: OnMouse gets kind, button, position, screen, modifiers and
   CHECK(scene->world().body(scene->world().bodyIds()[0]).xf.p == Vec2(1.5, -2));
 }
 
-TEST_CASE("mod hooks: OnMouse must answer true, false or nothing; a scene without it consumes nothing") {
+TEST_CASE("mod hooks: OnMouse must answer true, false or nothing, a scene without it consumes nothing") {
   const auto mouseError = [](const std::string& hook) {
     try {
       load("function PopulateWorld(world) end\n" + hook)->onMouse(MouseEvent{});
@@ -130,7 +130,7 @@ struct Recorder : lua::OverlayDraw {
 
 }  // namespace
 
-TEST_CASE("mod hooks: OnDraw gets the world; polygons, capsules, fills and draw.screen in pixels") {
+TEST_CASE("mod hooks: OnDraw gets the world, polygons, capsules, fills and draw.screen in pixels") {
   auto scene = load(R"lua(
 scene = {title = "hud"}
 function PopulateWorld(world) world:add_circle{radius = 1} end

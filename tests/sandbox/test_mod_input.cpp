@@ -96,7 +96,7 @@ function OnKey(world, key) keys[#keys + 1] = key; world:add_box{width = 0.1, hei
 
 }  // namespace
 
-TEST_CASE("mod input: a consumed click is the scene's, not the tool's; others still reach the tools") {
+TEST_CASE("mod input: a consumed click is the scene's, not the tool's, others still reach the tools") {
   TempDir dir;
   Session s;
   startOn(s, dir.path / "spawner.lua", kSpawner);
@@ -120,7 +120,7 @@ TEST_CASE("mod input: a consumed click is the scene's, not the tool's; others st
   CHECK(s.world().bodyCount() == 2);
 }
 
-TEST_CASE("mod input: scene.keys takes keys from the sandbox's bindings; the others keep theirs") {
+TEST_CASE("mod input: scene.keys takes keys from the sandbox's bindings, the others keep theirs") {
   TempDir dir;
   Session s;
   startOn(s, dir.path / "spawner.lua", kSpawner);

@@ -9,10 +9,6 @@ namespace {
 
 Aabb merged(const Aabb& a, const Aabb& b) { return {a.lower.cwiseMin(b.lower), a.upper.cwiseMax(b.upper)}; }
 double perimeter(const Aabb& a) { return 2.0 * ((a.upper.x() - a.lower.x()) + (a.upper.y() - a.lower.y())); }
-bool inside(const Aabb& small, const Aabb& big) {
-  return big.lower.x() <= small.lower.x() && big.lower.y() <= small.lower.y() && small.upper.x() <= big.upper.x() &&
-         small.upper.y() <= big.upper.y();
-}
 
 }  // namespace
 
@@ -22,7 +18,11 @@ Aabb AabbTree::fatten(const Aabb& box) {
   return {box.lower - grow, box.upper + grow};
 }
 
-bool AabbTree::segmentHitsBox(const Vec2& p, const Vec2& d, double max_fraction, const Aabb& box) {
+AabbTree::Ray::Ray(const Vec2& p1, const Vec2& dir) : p(p1), d(dir) {
+  for (int axis = 0; axis < 2; ++axis) inv[axis] = d[axis] == 0.0 ? 0.0 : 1.0 / d[axis];
+}
+
+bool AabbTree::Ray::hits(const Aabb& box, double max_fraction, double& enter) const {
   // Slabs: the segment p + t d, t ∈ [0, max_fraction], against lower ≤ x ≤ upper per axis.
   double t0 = 0.0, t1 = max_fraction;
   for (int axis = 0; axis < 2; ++axis) {
@@ -31,13 +31,13 @@ bool AabbTree::segmentHitsBox(const Vec2& p, const Vec2& d, double max_fraction,
       if (p[axis] < lo || p[axis] > hi) return false;
       continue;
     }
-    const double inv = 1.0 / d[axis];
-    double a = (lo - p[axis]) * inv, b = (hi - p[axis]) * inv;
+    double a = (lo - p[axis]) * inv[axis], b = (hi - p[axis]) * inv[axis];
     if (a > b) std::swap(a, b);
     t0 = std::max(t0, a);
     t1 = std::min(t1, b);
     if (t0 > t1) return false;
   }
+  enter = t0;
   return true;
 }
 

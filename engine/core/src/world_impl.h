@@ -188,7 +188,17 @@ struct WorldImpl {
   // a query comes after anything moved (layout_version counts steps and edits).
   AabbTree tree;
   std::vector<int32_t> tree_leaf;  // per shape slot, AabbTree::kNull when not in the tree
-  uint64_t layout_version = 1, tree_version = 0;
+  // Per shape slot, what the queries' filter reads, copied at each sync: a query reads these few
+  // bytes of the shapes it meets instead of their whole BodyShape (a cache miss each).
+  struct QueryShape {
+    ShapeId id;
+    bool sensor = false;
+    uint64_t category = 0, mask = 0;
+  };
+  std::vector<QueryShape> tree_shapes;
+  // layout_version counts steps and edits (setShapeFilter and setShapeSensor too, for tree_shapes);
+  // static shapes are refitted only when static_version says one may have moved.
+  uint64_t layout_version = 1, tree_version = 0, tree_static_version = 0;
   void syncTree();
   // Static shapes for continuous collision (continuous.cpp): a tree rebuilt only after an edit that
   // can add or move a static shape (static_version: shape added, body moved, retyped, enabled).

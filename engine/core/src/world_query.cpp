@@ -15,7 +15,12 @@ namespace rigidlab {
 void WorldImpl::syncTree() {
   if (tree_version == layout_version) return;
   tree_version = layout_version;
+  // Static shapes move only by an edit that counts in static_version (a shape added, a body moved,
+  // retyped or enabled): while it is unchanged their leaves are already right.
+  const bool statics_synced = tree_static_version == static_version;
+  tree_static_version = static_version;
   tree_leaf.resize(shapes.size(), AabbTree::kNull);
+  tree_shapes.resize(shapes.size());
   for (uint32_t s = 0; s < shapes.size(); ++s) {
     const bool in = shape_alive[s] && bodyOf(s).enabled;
     int32_t& leaf = tree_leaf[s];
@@ -26,7 +31,11 @@ void WorldImpl::syncTree() {
       }
       continue;
     }
-    const Aabb box = computeAabb(shapes[s].geometry, bodyOf(s).xf);
+    const Body& body = bodyOf(s);
+    const BodyShape& shape = shapes[s];
+    tree_shapes[s] = {shape.id, shape.sensor, shape.filter.category, shape.filter.mask};
+    if (leaf != AabbTree::kNull && statics_synced && body.isStatic()) continue;
+    const Aabb box = computeAabb(shape.geometry, body.xf);
     if (leaf == AabbTree::kNull) {
       leaf = tree.insert(box, s);
     } else {
@@ -38,9 +47,20 @@ void WorldImpl::syncTree() {
 namespace {
 
 bool accepts(const WorldImpl& w, uint32_t s, const QueryFilter& f) {
-  const BodyShape& shape = w.shapes[s];
+  const WorldImpl::QueryShape& shape = w.tree_shapes[s];
   if (shape.sensor && !f.sensors) return false;
-  return (shape.filter.category & f.mask) != 0 && (f.category & shape.filter.mask) != 0;
+  return (shape.category & f.mask) != 0 && (f.category & shape.mask) != 0;
+}
+
+// The exact test of a shape whose bounds cross the edge of the (not flat) query box `box`, given
+// also as the polygon `query`: a circle by its centre's distance to the box (the closest point of
+// the box, clamped per axis), the others by the distance between the convex shapes.
+bool boxOverlapsShape(const Aabb& box, const Shape& query, const Shape& shape, const Transform& xf) {
+  if (shape.type == ShapeType::Circle) {
+    const Vec2 c = xf.apply(shape.center);
+    return (c.cwiseMax(box.lower).cwiseMin(box.upper) - c).squaredNorm() <= shape.radius * shape.radius;
+  }
+  return shapesOverlap(query, Transform{}, shape, xf);
 }
 
 RayHit hitOf(const WorldImpl& w, uint32_t s, const ShapeRayHit& h) {
@@ -99,12 +119,19 @@ std::vector<ShapeId> World::queryBox(const Aabb& box, const QueryFilter& filter)
   const Shape query = size.x() > 0.0 && size.y() > 0.0 ? makeBox(size.x(), size.y(), 0.5 * (box.lower + box.upper))
                                                        : Shape{};
   std::vector<ShapeId> out;
-  w.tree.query(box, [&](uint32_t s) {
+  w.tree.queryContained(box, [&](uint32_t s, bool contained) {
     if (!accepts(w, s, filter)) return true;
-    const Transform& xf = w.bodyOf(s).xf;
-    const Shape& shape = w.shapes[s].geometry;
-    const bool hit = query.vertices.empty() ? computeAabb(shape, xf).overlaps(box) : shapesOverlap(query, Transform{}, shape, xf);
-    if (hit) out.push_back(w.shapes[s].id);
+    if (!contained) {  // a shape whose fat box is inside the box overlaps it: no test
+      const Transform& xf = w.bodyOf(s).xf;
+      const Shape& shape = w.shapes[s].geometry;
+      const Aabb bounds = computeAabb(shape, xf);
+      if (!bounds.overlaps(box)) return true;
+      // Inside the box, or the box is flat (the bounds test is the answer then): no exact test.
+      const bool inside = box.lower.x() <= bounds.lower.x() && box.lower.y() <= bounds.lower.y() &&
+                          bounds.upper.x() <= box.upper.x() && bounds.upper.y() <= box.upper.y();
+      if (!inside && !query.vertices.empty() && !boxOverlapsShape(box, query, shape, xf)) return true;
+    }
+    out.push_back(w.tree_shapes[s].id);
     return true;
   });
   std::sort(out.begin(), out.end(), [](ShapeId a, ShapeId b) { return a.index < b.index; });

@@ -220,6 +220,7 @@ void World::setShapeFilter(ShapeId id, const Filter& filter) {
   BodyShape& s = impl_->get(id);
   s.filter = filter;
   s.default_filter = filter == Filter{};
+  ++impl_->layout_version;  // the queries' copy of the filter (WorldImpl::tree_shapes)
   impl_->wakeIsland(s.body.index);
 }
 
@@ -245,6 +246,7 @@ void World::setShapeSensor(ShapeId id, bool sensor) {
   BodyShape& s = impl_->get(id);
   impl_->countShape(s, -1);
   s.sensor = sensor;
+  ++impl_->layout_version;  // the queries' copy of the flag (WorldImpl::tree_shapes)
   impl_->countShape(s, +1);
   impl_->updateMass(impl_->bodies[s.body.index], "density", s.density);  // the CCD bounds change
   impl_->wakeIsland(s.body.index);

@@ -46,6 +46,7 @@ struct Scene::Impl {
   // key → function), made on first use, so a scene without them holds nothing for events.
   sol::object on_contact_begin, on_contact_end, on_hit, on_sensor_begin, on_sensor_end, on_joint_break;
   sol::table pre_solve_functions;
+  double event_seconds = 0.0, event_cpu_seconds = 0.0;  // Scene::eventSeconds, eventCpuSeconds
 
   // --- sandbox mod hooks (scene_controls.cpp, lua_mouse_event.cpp)
   sol::object on_mouse, on_control;  // OnMouse, OnControl, or nil
@@ -137,6 +138,21 @@ sol::object cachedHandle(lua_State* L, sol::table& cache, uint64_t key, const T&
   return handle;
 }
 
+// cachedHandle pushed onto the stack, with no registry reference made on the way (the event
+// hooks' arguments are built in bulk).
+template <typename T>
+void pushCachedHandle(lua_State* L, const sol::table& cache, uint64_t key, const T& value) {
+  cache.push(L);
+  lua_rawgeti(L, -1, static_cast<lua_Integer>(key));
+  if (lua_type(L, -1) == LUA_TNIL) {
+    lua_pop(L, 1);
+    pushHandle(L, value);
+    lua_pushvalue(L, -1);
+    lua_rawseti(L, -3, static_cast<lua_Integer>(key));
+  }
+  lua_remove(L, -2);
+}
+
 // __eq of a handle type: two handles of one scene naming the same thing (T::*Key: uid, id).
 template <typename T, auto Key>
 int handlesEqual(lua_State* L) {
@@ -191,6 +207,7 @@ sol::table makeWeakTable(lua_State* L);
 
 // The handle of a live body (created on first use, then cached in Scene::Impl::handles).
 sol::object bodyHandle(lua_State* L, Scene::Impl& scene, BodyId id);
+void pushBodyHandle(lua_State* L, Scene::Impl& scene, BodyId id);  // the same, pushed
 // The body a handle designates; fails "<function>: <what> was removed" for a stale one.
 BodyId liveBody(lua_State* L, const LuaBody& body, std::string_view function);
 // The body named by option `key`, which must hold a body handle of this scene.

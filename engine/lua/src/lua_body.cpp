@@ -300,6 +300,11 @@ sol::object bodyHandle(lua_State* L, Scene::Impl& scene, BodyId id) {
   return cachedHandle(L, scene.handles, uid, LuaBody{&scene, id, uid});
 }
 
+void pushBodyHandle(lua_State* L, Scene::Impl& scene, BodyId id) {
+  const uint32_t uid = scene.world->body(id).uid;
+  pushCachedHandle(L, scene.handles, uid, LuaBody{&scene, id, uid});
+}
+
 BodyId liveBody(lua_State* L, const LuaBody& body, std::string_view function) {
   if (!liveWorld(L, *body.scene, function).isValid(body.id))
     fail(L, function, "body (id " + std::to_string(body.uid) + ") was removed from the world");

@@ -39,12 +39,12 @@ void pushContact(lua_State* L, Scene::Impl& scene, const ContactView& c, const c
   lua_createtable(L, 0, kind ? 10 : 9);
   const auto body = [&](const char* name, BodyId id) {
     if (w.isValid(id)) {
-      bodyHandle(L, scene, id).push(L);
+      pushBodyHandle(L, scene, id);
       lua_setfield(L, -2, name);
     }
   };
   const auto shape = [&](const char* name, ShapeId id) {
-    shapeHandle(L, scene, id).push(L);
+    pushShapeHandle(L, scene, id);
     lua_setfield(L, -2, name);
   };
   const auto number = [&](const char* name, double x) {

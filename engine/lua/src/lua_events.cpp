@@ -158,39 +158,49 @@ const std::vector<EventHook>& eventHooks() {
   return hooks;
 }
 
-std::vector<EventCall> eventCalls(Scene::Impl& s) {
-  std::vector<EventCall> calls;
+void pushEventCalls(Scene::Impl& s, std::vector<EventCall>& calls) {
+  calls.clear();
   const bool contacts = isFunction(s.on_contact_begin) || isFunction(s.on_contact_end) || isFunction(s.on_hit);
   const bool sensors = isFunction(s.on_sensor_begin) || isFunction(s.on_sensor_end);
   const bool joints = isFunction(s.on_joint_break);
-  if (!contacts && !sensors && !joints) return calls;
+  if (!contacts && !sensors && !joints) return;
   lua_State* L = s.host->L();
   const World& w = *s.world;
   using Kind = World::ContactEvent::Kind;
+  const std::vector<World::ContactEvent>& contact_events = w.contactEvents();
+  lua_createtable(L, contacts ? static_cast<int>(contact_events.size()) : 0, 0);
+  int n = 0;  // arguments in the table
+  const auto keep = [&] { lua_rawseti(L, -2, ++n); return n; };
   if (contacts) {
-    for (const World::ContactEvent& e : w.contactEvents()) {
-      const EventHook& h = eventHooks()[e.kind == Kind::Begin ? 0 : e.kind == Kind::End ? 1 : 2];
-      if (!isFunction(s.*h.slot)) continue;
+    // The hook of each kind looked up once, not per event.
+    const sol::object* hook[3] = {nullptr, nullptr, nullptr};
+    for (int k = 0; k < 3; ++k)
+      if (isFunction(s.*eventHooks()[k].slot)) hook[k] = &(s.*eventHooks()[k].slot);
+    calls.reserve(contact_events.size());
+    for (const World::ContactEvent& e : contact_events) {
+      const int k = e.kind == Kind::Begin ? 0 : e.kind == Kind::End ? 1 : 2;
+      if (!hook[k]) continue;
       pushContact(L, s, contactView(e));
-      calls.push_back({&(s.*h.slot), h.name, sol::stack::pop<sol::object>(L), sol::object()});
+      calls.push_back({hook[k], eventHooks()[k].name, keep(), 0});
     }
   }
   if (sensors) {
     for (const World::SensorEvent& e : w.sensorEvents()) {
       const EventHook& h = eventHooks()[e.begin ? 3 : 4];
       if (!isFunction(s.*h.slot)) continue;
-      calls.push_back({&(s.*h.slot), h.name, shapeHandle(L, s, e.sensor), shapeHandle(L, s, e.visitor)});
+      pushShapeHandle(L, s, e.sensor);
+      const int sensor = keep();
+      pushShapeHandle(L, s, e.visitor);
+      calls.push_back({&(s.*h.slot), h.name, sensor, keep()});
     }
   }
   if (joints) {
     // The core has removed a broken joint by now: its handle is made from what the break kept.
-    for (const World::JointBreakInfo& b : w.jointBreaks())
-      calls.push_back({&s.on_joint_break, "OnJointBreak",
-                       cachedHandle(L, s.joint_handles, handleKey(b.id.index, b.id.generation),
-                                    LuaJoint{&s, b.id, b.def.type}),
-                       sol::object()});
+    for (const World::JointBreakInfo& b : w.jointBreaks()) {
+      pushCachedHandle(L, s.joint_handles, handleKey(b.id.index, b.id.generation), LuaJoint{&s, b.id, b.def.type});
+      calls.push_back({&s.on_joint_break, "OnJointBreak", keep(), 0});
+    }
   }
-  return calls;
 }
 
 }  // namespace rigidlab::lua

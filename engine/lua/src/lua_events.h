@@ -39,17 +39,19 @@ struct EventHook {
 };
 const std::vector<EventHook>& eventHooks();
 
-// One call of an event hook: hook(world, first [, second]).
+// One call of an event hook: hook(world, args[first] [, args[second]]), args being the table
+// pushEventCalls leaves on the stack.
 struct EventCall {
   const sol::object* hook;
   std::string_view name;
-  sol::object first, second;
+  int first, second;  // second 0: the hook takes one argument after the world
 };
 // The hook calls for the events of the step just made, in the order they are to be made: contact
 // events as the core lists them (by shape pair; begin before hit), then sensor events (by sensor,
-// then visitor), then joint breaks. Their arguments are all made before any hook runs, so a hook
-// that removes a body does not change what the later hooks are given. Empty, and nothing
-// allocated, when the scene defines no event hook. Call it inside ScriptHost::run.
-std::vector<EventCall> eventCalls(Scene::Impl& scene);
+// then visitor), then joint breaks. Pushes one table holding all their arguments, made before any
+// hook runs, so a hook that removes a body does not change what the later hooks are given; every
+// event gets a contact table of its own (a hook may keep it). Pushes nothing, and leaves `calls`
+// empty, when the scene defines no event hook. Call it inside ScriptHost::run.
+void pushEventCalls(Scene::Impl& scene, std::vector<EventCall>& calls);
 
 }  // namespace rigidlab::lua

@@ -200,6 +200,10 @@ sol::object shapeHandle(lua_State* L, Scene::Impl& scene, ShapeId id) {
   return cachedHandle(L, scene.shape_handles, handleKey(id.index, id.generation), LuaShape{&scene, id});
 }
 
+void pushShapeHandle(lua_State* L, Scene::Impl& scene, ShapeId id) {
+  pushCachedHandle(L, scene.shape_handles, handleKey(id.index, id.generation), LuaShape{&scene, id});
+}
+
 ShapeId liveShape(lua_State* L, const LuaShape& shape, std::string_view function) {
   if (!liveWorld(L, *shape.scene, function).isValid(shape.id))
     fail(L, function, "the shape was removed (by shape:remove() or with its body)");

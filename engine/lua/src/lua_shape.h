@@ -12,6 +12,7 @@ namespace rigidlab::lua {
 // The handle of a live shape (cached, weak), and the shape a handle designates (fails
 // "<function>: the shape was removed ..." for a stale one).
 sol::object shapeHandle(lua_State* L, Scene::Impl& scene, ShapeId id);
+void pushShapeHandle(lua_State* L, Scene::Impl& scene, ShapeId id);  // the same, pushed
 ShapeId liveShape(lua_State* L, const LuaShape& shape, std::string_view function);
 // world:remove(shape) and shape:remove(): the shape and its host memory.
 void removeShape(lua_State* L, Scene::Impl& scene, ShapeId id);

@@ -1,8 +1,10 @@
 // Loading a scene and running its hooks (docs/design/thesis.md §3 and §11: PopulateWorld builds the model).
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <fstream>
 #include <sstream>
 
@@ -167,14 +169,48 @@ void call(Scene::Impl& s, const sol::object& f, std::string_view name, const Arg
   callReading(s, f, name, [](lua_State*) {}, args...);
 }
 
+double threadCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
 // --- event hooks (lua_events.h): called after a step, before OnStep, each under its own budget.
+// All of them in one protected call (a thousand contact events are common), each call in a budget
+// window of its own, as call() opens for the other hooks.
 void deliverEvents(Scene::Impl& s) {
   bool any = false;
   for (const EventHook& h : eventHooks()) any = any || defined(s.*h.slot);
   if (!any) return;  // no Lua call, nothing made
+  ScriptHost& host = *s.host;
+  // The window of one hook call; notes on closing whether it was spent, which errorText needs to
+  // know after the protected call has closed it.
+  struct Window {
+    Window(Budget& b, bool& spent) : budget(b), spent(spent), scope(b, Budget::Kind::Hook) {}
+    ~Window() { spent = budget.expired(); }
+    Budget& budget;
+    bool& spent;
+    Budget::Scope scope;
+  };
   std::vector<EventCall> calls;
-  if (auto error = s.host->run([&] { calls = eventCalls(s); })) throw SceneError(s.host->errorText(*error, "events"));
-  for (const EventCall& c : calls) call(s, *c.hook, c.name, s.world_handle, c.first, c.second);
+  std::string_view running = "events";  // what an error happened in
+  bool spent = false;
+  auto error = host.run([&] {
+    lua_State* L = host.L();
+    pushEventCalls(s, calls);
+    const int args = lua_gettop(L);
+    for (const EventCall& c : calls) {
+      running = c.name;
+      ++host.calls;
+      const Window window(host.budget(), spent);
+      c.hook->push(L);
+      s.world_handle.push(L);
+      lua_rawgeti(L, args, c.first);
+      if (c.second) lua_rawgeti(L, args, c.second);
+      lua_call(L, c.second ? 3 : 2, 0);
+    }
+  });
+  if (error) throw SceneError(host.errorText(std::move(*error), running, spent));
 }
 
 // The steps of load() that touch the state, each inside ScriptHost::run.
@@ -342,7 +378,11 @@ void Scene::step(double dt) {
     throw SceneError(impl_->name + ": step: " + e.what());
   }
   noteJointBreaks(*impl_);
+  const auto events_start = std::chrono::steady_clock::now();
+  const double cpu_start = threadCpuSeconds();
   deliverEvents(*impl_);
+  impl_->event_cpu_seconds = threadCpuSeconds() - cpu_start;
+  impl_->event_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - events_start).count();
   if (defined(impl_->on_step)) call(*impl_, impl_->on_step, "OnStep", impl_->world_handle, dt);
 }
 
@@ -467,6 +507,8 @@ std::vector<Scene::ExactState> Scene::exact(double t) {
 }
 
 long Scene::luaCalls() const { return impl_->host->calls; }
+double Scene::eventSeconds() const { return impl_->event_seconds; }
+double Scene::eventCpuSeconds() const { return impl_->event_cpu_seconds; }
 
 std::filesystem::path scriptsDirectory() { return dataDirectory("scripts", "RIGIDLAB_SCRIPTS"); }
 

@@ -591,9 +591,9 @@ void ScriptHost::pushChunk(std::string_view source, const std::string& name) {
   throw SceneError(errorText(std::move(message), ""));
 }
 
-std::string ScriptHost::errorText(std::string message, std::string_view context) {
+std::string ScriptHost::errorText(std::string message, std::string_view context, std::optional<bool> budget_spent) {
   // A spent budget explains whatever error the call ended with (the hook's, or one it caused).
-  if (budget_ && budget_->expired()) message = budget_->raised().empty() ? budget_->message() : budget_->raised();
+  if (budget_ && budget_spent.value_or(budget_->expired())) message = budget_->raised().empty() ? budget_->message() : budget_->raised();
   // Shown on terminals and in the sandbox: escaped and shortened (scene_text.h).
   message = displayText(message, kMessageBytes, "\n\t");
   if (message == last_api_error_ || context.empty()) return message;  // already "<where><function>: ..."

@@ -88,7 +88,9 @@ class ScriptHost {
   // being run ("PopulateWorld", "Check", ...); it is not repeated when the error came from a
   // rigidlab API function, whose messages already name themselves. Shortened to kMessageBytes
   // and with control characters escaped (display.h), so any error is safe to print.
-  std::string errorText(std::string message, std::string_view context);
+  // `budget_spent`: whether the call's budget window ran out, when the window has closed since
+  // (default: asks the open window).
+  std::string errorText(std::string message, std::string_view context, std::optional<bool> budget_spent = std::nullopt);
 
   // The scene's wall-clock budget (budget.h).
   Budget& budget() { return *budget_; }

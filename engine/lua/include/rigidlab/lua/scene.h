@@ -206,6 +206,12 @@ class Scene {
   // Calls made from C++ into Lua so far (hooks and force evaluations): a scene without Lua forces
   // makes none during a step.
   long luaCalls() const;
+  // Wall time the last step() spent delivering its events to the event hooks (OnContactBegin ...:
+  // building their arguments and calling them) [s]; 0 when the scene defines none.
+  double eventSeconds() const;
+  // The same as CPU time of the calling thread [s]: what the delivery cost without the time the
+  // thread waited for the processor (a loaded machine).
+  double eventCpuSeconds() const;
 
   struct Impl;
 

@@ -1,0 +1,37 @@
+# cmake -DRIGIDLAB=<binary> -P bench_probes.cmake
+# `rigidlab bench queries` and `rigidlab bench events` measure something after each step (queries,
+# event delivery) instead of the step: one step of each, so that the probes cannot rot. Their
+# counts are checked, never their times (timings are benchmarks, not tests).
+include(${CMAKE_CURRENT_LIST_DIR}/../cli_checks.cmake)
+
+function(metric scene key)
+  run(0 bench ${scene} --steps 1 --reps 1 --json)
+  string(JSON value GET "${out}" metrics ${key})
+  set(value "${value}" PARENT_SCOPE)
+endfunction()
+
+run(0 bench --help)
+expect_match("bench --help" "${out}" "  queries ")
+expect_match("bench --help" "${out}" "  events ")
+
+# One step: 1000 rays and 200 box queries, each timed; 10 000 bodies about 1 m apart, so a 9.5 m
+# box meets about (9.5 + 0.5)² = 100 shapes and nearly every 20 m ray hits one.
+metric(queries ray_samples)
+expect_equal("queries: rays timed" "${value}" 1000)
+metric(queries box_samples)
+expect_equal("queries: box queries timed" "${value}" 200)
+metric(queries box_shapes_mean)
+if(value LESS 90 OR value GREATER 110)
+  message(FATAL_ERROR "queries: a 9.5 m box found ${value} shapes, expected about 100")
+endif()
+metric(queries ray_hit_fraction)
+if(value LESS 0.9)
+  message(FATAL_ERROR "queries: ${value} of the rays hit, expected nearly all")
+endif()
+
+# One step: the 1000 balls start 1 mm into the floor, 1000 begin events, each given to the hook.
+metric(events begin_events_per_step)
+expect_equal("events: begin events" "${value}" 1000)
+run(0 bench events --steps 1 --reps 1 --json)
+string(JSON value GET "${out}" lua_calls_per_step)
+expect_equal("events: Lua calls (1000 OnContactBegin and OnStep)" "${value}" 1001)
