@@ -58,30 +58,17 @@ void chooseLocatedBodies(WorldImpl& w) {
     if (w.isActive(i) && ++awake > w.def.impact_max_bodies) return;
   if (awake == 0) return;
 
-  auto& parent = im.parent;
-  parent.resize(n);
-  for (uint32_t i = 0; i < n; ++i) parent[i] = i;
+  // Bodies that block their island: jointed ones, and those in resting or persistent contact:
+  // touching at the start of the step (the separations the narrow phase found at the end of the
+  // last one), unless a located impact has just sent the pair apart (last step's log: an impact at
+  // the very end of the step leaves the pair touching).
   auto& blocked = im.island_blocked;
   blocked.assign(n, 0);
-  const auto unite = [&](uint32_t a, uint32_t b) {
-    if (!w.isActive(a) || !w.isActive(b)) return;
-    const uint32_t ra = root(parent, a), rb = root(parent, b);
-    parent[std::max(ra, rb)] = std::min(ra, rb);
-  };
-  for (const ContactKey& k : w.contact_keys) unite(k.a, k.b);
-  for (const ForceEntry& f : w.forces)
-    if (f.alive && !f.b.isNull()) unite(f.a.index, f.b.index);
   for (const Joint& j : w.joints) {
     if (!j.alive) continue;
-    const uint32_t slots[4] = {j.a, j.b, j.c, j.d};
-    for (uint32_t s : slots)
+    for (uint32_t s : {j.a, j.b, j.c, j.d})
       if (s != kWorldSlot) blocked[s] = 1;
-    for (uint32_t s : slots)
-      if (s != kWorldSlot && slots[0] != kWorldSlot) unite(slots[0], s);
   }
-  // Touching contacts at the start of the step (the separations the narrow phase found at the end
-  // of the last one): resting or persistent contact. Not a pair that a located impact has just
-  // sent apart (last step's log: an impact at the very end of the step leaves the pair touching).
   const auto bounced = [&](const Contact& c) {
     for (const LocatedImpact& l : im.log)
       if (l.separating && l.shape_a == c.shape_a && l.shape_b == c.shape_b) return true;
@@ -95,6 +82,30 @@ void chooseLocatedBodies(WorldImpl& w) {
     if (!touching || bounced(c)) continue;
     blocked[c.a] = 1;
     blocked[c.b] = 1;
+  }
+  // Every awake body blocked by itself (a resting stack, a pile): none can be located, and the
+  // islands need not be found.
+  bool free = false;
+  for (uint32_t i = 0; i < n && !free; ++i) free = w.isActive(i) && !blocked[i];
+  if (!free) return;
+
+  // Islands: awake bodies joined by contacts, two-body forces and joints.
+  auto& parent = im.parent;
+  parent.resize(n);
+  for (uint32_t i = 0; i < n; ++i) parent[i] = i;
+  const auto unite = [&](uint32_t a, uint32_t b) {
+    if (!w.isActive(a) || !w.isActive(b)) return;
+    const uint32_t ra = root(parent, a), rb = root(parent, b);
+    parent[std::max(ra, rb)] = std::min(ra, rb);
+  };
+  for (const ContactKey& k : w.contact_keys) unite(k.a, k.b);
+  for (const ForceEntry& f : w.forces)
+    if (f.alive && !f.b.isNull()) unite(f.a.index, f.b.index);
+  for (const Joint& j : w.joints) {
+    if (!j.alive) continue;
+    const uint32_t slots[4] = {j.a, j.b, j.c, j.d};
+    for (uint32_t s : slots)
+      if (s != kWorldSlot && slots[0] != kWorldSlot) unite(slots[0], s);
   }
   // Per island root: its size, and whether any member blocks it.
   auto& size = im.island_bodies;
