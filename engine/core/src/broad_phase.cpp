@@ -204,7 +204,7 @@ void findPairs(WorldImpl& w) {
       view.placed.poly = {w.world_vertices.data() + w.polygon_offset[i], w.world_normals.data() + w.polygon_offset[i],
                           static_cast<int>(shape.vertices.size()), shape.extent};
     }
-    view.extent = maxExtent(shape);
+    view.extent = shape.extent > 0.0 ? shape.extent : maxExtent(shape);  // maxExtent without the call
     view.material = s.material;
     // A body with joints may be kept from colliding with its jointed partners (collide_connected).
     const bool jointed = joints && s.body.index < w.body_joints.size() && !w.body_joints[s.body.index].empty();
