@@ -95,20 +95,12 @@ class Progress {
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
-// The label a snapshot file of `rigidlab run` carries: the scene file as given and the scene's dt
-// (not part of the world's state) as an exact hexadecimal float.
-std::string stateLabel(const std::string& scene, double dt) {
-  char hex[64];
-  std::snprintf(hex, sizeof hex, "%a", dt);
-  return "scene: " + scene + "\ndt: " + hex + "\n";
-}
-
 struct StateLabel {
   std::string scene;
   std::optional<double> dt;
 };
 
-// Reads stateLabel's text; a label of another kind (Scene::snapshot's: the file alone) is the scene.
+// Reads Scene::snapshot's label: the scene file and its dt; any other label is taken as the file.
 StateLabel parseStateLabel(const std::string& label) {
   StateLabel out;
   if (!label.starts_with("scene: ")) {
@@ -240,9 +232,7 @@ int runCommand(const std::vector<std::string>& argv) {
   }
   if (const auto path = args.value("save-state")) {
     try {
-      WorldSnapshot s = scene->snapshot();
-      s.setLabel(stateLabel(scene_path, scene->settings().dt));
-      writeFile(*path, serializeSnapshot(s));
+      writeFile(*path, serializeSnapshot(scene->snapshot()));
     } catch (const std::exception& e) {
       std::fprintf(stderr, "run: --save-state %s: %s\n", path->c_str(), e.what());
       return kExitUsage;

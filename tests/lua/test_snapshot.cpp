@@ -71,7 +71,7 @@ TEST_CASE("Scene::snapshot names the scene it came from") {
   // A snapshot handle cannot leave its scene's Lua state, so restore's "another scene" check is a
   // guard; the program's --load-state compares this label with the scene it loads.
   auto a = load("function PopulateWorld(world) end");
-  CHECK(a->snapshot().label() == "test.lua");
+  CHECK(a->snapshot().label() == "scene: test.lua\ndt: 0x1.1111111111111p-6\n");
 }
 
 TEST_CASE("Scene::restore from a file's bytes, in a freshly loaded scene, repeats the steps") {

@@ -46,7 +46,13 @@ class Writer {
   std::string out;
 
   void raw(uint64_t v, int bytes) {
-    for (int i = 0; i < bytes; ++i) out.push_back(static_cast<char>((v >> (8 * i)) & 0xff));
+    char b[8];
+    if constexpr (std::endian::native == std::endian::little) {
+      std::memcpy(b, &v, 8);  // the low bytes first, as the format says
+    } else {
+      for (int i = 0; i < 8; ++i) b[i] = static_cast<char>((v >> (8 * i)) & 0xff);
+    }
+    out.append(b, static_cast<size_t>(bytes));
   }
   void operator()(const bool& v, const char* = "") { raw(v ? 1 : 0, 1); }
   void operator()(const char& v, const char* = "") { raw(static_cast<uint8_t>(v), 1); }
@@ -80,7 +86,11 @@ class Reader {
   uint64_t raw(int bytes, const char* field) {
     if (in_.size() - pos_ < static_cast<size_t>(bytes)) fail(std::string("truncated, reading ") + field);
     uint64_t v = 0;
-    for (int i = 0; i < bytes; ++i) v |= uint64_t{static_cast<unsigned char>(in_[pos_ + i])} << (8 * i);
+    if constexpr (std::endian::native == std::endian::little) {
+      std::memcpy(&v, in_.data() + pos_, static_cast<size_t>(bytes));
+    } else {
+      for (int i = 0; i < bytes; ++i) v |= uint64_t{static_cast<unsigned char>(in_[pos_ + i])} << (8 * i);
+    }
     pos_ += bytes;
     return v;
   }
@@ -690,7 +700,8 @@ void io(A& a, WorldImpl& w) {
   io(a, w.pairs);
   io(a, w.contacts);
   io(a, w.contact_keys);
-  io(a, w.previous_contacts);
+  // Not previous_contacts: between steps it holds the step before last's, which the next narrow
+  // phase swaps out and clears unread (narrow_phase.cpp); only its capacity is reused.
   io(a, w.island);
   io(a, w.keep_awake);
   io(a, w.ccd_hit);
@@ -766,7 +777,6 @@ void validate(const WorldImpl& w) {
             std::string(what) + " name slots out of range");
   };
   contactsOk(w.contacts, "the contacts");
-  contactsOk(w.previous_contacts, "the previous contacts");
   check(w.contact_keys.size() == w.contacts.size(), "the contact keys do not match the contacts");
   for (const ContactKey& k : w.contact_keys)
     check(k.a < nb && k.b < nb && k.count <= 2, "the contact keys name slots out of range");
@@ -791,6 +801,7 @@ void validate(const WorldImpl& w) {
 std::string serializeSnapshot(const WorldSnapshot& snapshot) {
   if (!snapshot.state_) throw SnapshotError("snapshot: the snapshot is empty");
   Writer payload;
+  payload.out.reserve(4096 + 600 * snapshot.state_->bodies.size() + 300 * snapshot.state_->contacts.size());
   payload(snapshot.label_);
   io(payload, const_cast<WorldImpl&>(*snapshot.state_));  // a Writer only reads
   Writer file;

@@ -10,6 +10,7 @@
 // variables are not part of a snapshot.
 #include "lua_snapshot.h"
 
+#include <cstdio>
 #include <set>
 
 #include "api_names.h"
@@ -126,7 +127,10 @@ lua_CFunction snapshotWorldMethod(std::string_view name) {
 
 WorldSnapshot Scene::snapshot() const {
   WorldSnapshot s = impl_->world->snapshot();
-  s.setLabel(impl_->file.empty() ? impl_->name : impl_->file.string());
+  // The scene's dt is the scene's, not the world's: the label carries it, exactly (%a).
+  char dt[64];
+  std::snprintf(dt, sizeof dt, "%a", impl_->settings.dt);
+  s.setLabel("scene: " + (impl_->file.empty() ? impl_->name : impl_->file.string()) + "\ndt: " + dt + "\n");
   return s;
 }
 

@@ -207,7 +207,7 @@ class Scene {
   // makes none during a step.
   long luaCalls() const;
 
-  // The world's snapshot labelled with the scene file (world_snapshot.h), and a restore that also
+  // The world's snapshot labelled "scene: <file>\ndt: <dt as %a>\n" (world_snapshot.h), and a restore that also
   // mends the scene's Lua side (forgets handles of bodies that are gone; docs/lua-api.md
   // "Snapshots"). The scene's Lua variables are not in a snapshot. restore() throws SceneError.
   WorldSnapshot snapshot() const;
