@@ -11,7 +11,7 @@
 // Reading checks everything a later step would index with (slots, counts, sizes of per-slot
 // vectors) and throws SnapshotError naming the field: a corrupt or hostile file is an error,
 // never undefined behaviour. Written is what a step, an edit or a query reads from the state kept
-// between steps (docs/snapshots.md); the step's scratch (solver copies, per-step buffers) is not:
+// between steps (docs/testing.md "Snapshots"); the step's scratch (solver copies, per-step buffers) is not:
 // steps size and fill it themselves.
 #include <bit>
 #include <cstring>

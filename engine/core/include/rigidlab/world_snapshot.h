@@ -1,4 +1,4 @@
-// Whole-simulation snapshots (docs/snapshots.md): World::snapshot() copies everything a later step
+// Whole-simulation snapshots (docs/testing.md "Snapshots"): World::snapshot() copies everything a later step
 // reads (bodies, shapes, joints and their accumulated impulses, forces, warm starts, sleep timers
 // and islands, sensors' contents, the clock, the settings, the NaN firewall's incidents), and
 // World::restore() puts a world back to it, so the steps after a restore give the same bits as
