@@ -27,12 +27,13 @@ TEST_CASE("timeline: keeps the last 10 s of states, at most max_bytes, one every
   CHECK(t.span() == doctest::Approx(10.0).epsilon(0.002));
   CHECK(t.size() == 601);  // 10 s at 60 Hz, both ends
   CHECK(t.at(0).step == 60 * 20 - 1);
-  CHECK(t.bytes() == t.size() * 100);
+  CHECK(t.stateBytes(0) == state(60 * 20 - 1));
   Timeline small({10.0, 5000, 1});
   fill(small, 0, 600);
   CHECK(small.bytes() <= 5000);
-  CHECK(small.size() == 50);
+  CHECK(small.size() > 30);
   CHECK(small.at(small.size() - 1).step == 599);
+  for (size_t i = 0; i < small.size(); ++i) CHECK(small.stateBytes(i) == state(small.at(i).step));
   Timeline sparse({10.0, size_t{1} << 20, 4});
   for (long i = 0; i < 100; ++i)
     if (sparse.due(i)) sparse.record(i / 60.0, i, state(i));
@@ -57,14 +58,36 @@ TEST_CASE("timeline: scrub back N and forward, clamped; a new state at a past on
   t.record(50 / 60.0 + 1e-3, 51, "resumed");  // the simulation went on from step 50
   CHECK(!t.rewound());
   CHECK(t.size() == 52);
-  CHECK(t.at(51).bytes == "resumed");
-  CHECK(t.bytes() == 51 * 100 + 7);
+  CHECK(t.stateBytes(51) == "resumed");
+  CHECK(t.stateBytes(50) == state(50));
   // An edit at a past state (truncate) drops its future and leaves it the newest.
   t.move(-20);
   t.truncate();
   CHECK(t.size() == 32);
   CHECK(!t.rewound());
   CHECK(t.seek(31) == nullptr);      // already there
+}
+
+TEST_CASE("timeline: states kept as differences rebuild exactly, through evictions of key states") {
+  // 10 kB states of which a few bytes change per step (as static bodies do not), some growing.
+  std::string base(10000, 'x');
+  const auto make = [&](long i) {
+    std::string s = base;
+    s[static_cast<size_t>(i * 37) % s.size()] = static_cast<char>('a' + i % 26);
+    s += std::string(static_cast<size_t>(i % 5) * 70, static_cast<char>('0' + i % 10));  // sizes change
+    return s;
+  };
+  Timeline t({2.0, size_t{64} << 20, 1});
+  for (long i = 0; i < 600; ++i) t.record(i / 60.0, i, make(i));
+  CHECK((t.size() == 121 || t.size() == 122));   // 2 s at 60 Hz, and one at or before its start
+  CHECK(t.bytes() < t.size() * 10000 / 4);        // whole states would take 1.2 MB
+  CHECK(t.at(0).key);                             // the oldest is always whole
+  for (size_t i = 0; i < t.size(); ++i) CHECK(t.stateBytes(i) == make(t.at(i).step));
+  t.seek(40);
+  t.record(1.0, 1000, "new");                     // drops the states after 40
+  CHECK(t.size() == 42);
+  CHECK(t.stateBytes(40) == make(t.at(40).step));
+  CHECK(t.stateBytes(41) == "new");
 }
 
 TEST_CASE("rewind: Shift+N shows the exact earlier state; resuming from it repeats the run bit for bit") {

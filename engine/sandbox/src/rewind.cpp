@@ -14,10 +14,10 @@ namespace rigidlab::sandbox {
 namespace {
 
 // Shows a kept state: the world restored to it, paused, the readouts that follow the state reset.
-void show(Session& s, const Timeline::Entry& e) {
+void show(Session& s) {
   cancelGesture(s);
   try {
-    s.scene->restore(deserializeSnapshot(e.bytes));
+    s.scene->restore(deserializeSnapshot(s.timeline.stateBytes(s.timeline.cursor())));
   } catch (const std::exception& ex) {
     s.setStatus(overlayText(std::string("cannot rewind: ") + ex.what()), 6.0);
     return;
@@ -55,7 +55,7 @@ bool stepBack(Session& s) {
     s.setStatus("nothing older kept (the timeline keeps the last " + std::to_string(s.timeline.limits().seconds) + " s)");
     return false;
   }
-  show(s, *e);
+  show(s);
   return true;
 }
 
@@ -63,13 +63,13 @@ bool stepForward(Session& s) {
   if (!s.timeline.rewound()) return false;
   const Timeline::Entry* e = s.timeline.move(+1);
   if (!e) return false;
-  show(s, *e);
+  show(s);
   return true;
 }
 
 void seekState(Session& s, size_t index) {
   setPaused(s, true);
-  if (const Timeline::Entry* e = s.timeline.seek(index)) show(s, *e);
+  if (s.timeline.seek(index)) show(s);
 }
 
 void syncTimeline(Session& s) {
