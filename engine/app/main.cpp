@@ -22,6 +22,7 @@ usage:
                            open the sandbox on SCENE (default: scripts/scenes/playground.lua);
                            without a display, run the scene headless for a few seconds instead
   rigidlab run SCENE.lua [--time T | --steps N] [--dt H] [--integrator NAME] [--json] ...
+              [--save-state FILE] [--load-state FILE]
                            run a scene headless and print a summary or JSON; runs its Check
   rigidlab check SCENE.lua load and validate a scene without simulating
   rigidlab bench [SCENE...] [--json] [--reps R]

@@ -2,6 +2,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
+#include <filesystem>
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -13,6 +15,8 @@
 #include "rigidlab/error.h"
 #include "rigidlab/lua/scene.h"
 #include "rigidlab/lua/scene_text.h"
+#include "rigidlab/world_snapshot.h"
+#include "text_file.h"
 
 namespace rigidlab::app {
 namespace {
@@ -35,6 +39,15 @@ Runs a scene headless: PopulateWorld, then steps (calling OnStep after each), th
   --trace FILE.csv  write time,id,name,x,y,angle,vx,vy,omega for every body ...
   --trace-every K   ... every K steps (default 1), plus the initial and the final state
   --quiet           no summary (errors and the scene's print output still appear)
+  --save-state FILE write the whole simulation state at the end of the run (before Check) to
+                    FILE: a snapshot naming the scene file and its dt (docs/testing.md
+                    "Snapshots"), e.g. to attach to a bug report
+  --load-state FILE load the scene the snapshot names (or SCENE, which must be the same file
+                    unless --force), run PopulateWorld, put the world in the snapshot's state,
+                    then continue: --time T runs until t = T (default: the scene's duration),
+                    --steps N runs N more steps. The steps after a resume give the same bits as
+                    the uninterrupted run; the scene's Lua variables start as after PopulateWorld
+  --force           with --load-state: accept a snapshot of another scene file
 
 A run may take at most 10000000 steps (--steps, or --time / the scene's duration divided by
 dt): a longer one is refused before it starts.
@@ -82,16 +95,54 @@ class Progress {
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
+struct StateLabel {
+  std::string scene;
+  std::optional<double> dt;
+};
+
+// Reads Scene::snapshot's label: the scene file and its dt; any other label is taken as the file.
+StateLabel parseStateLabel(const std::string& label) {
+  StateLabel out;
+  if (!label.starts_with("scene: ")) {
+    out.scene = label;
+    return out;
+  }
+  size_t at = 0;
+  while (at < label.size()) {
+    size_t end = label.find('\n', at);
+    if (end == std::string::npos) end = label.size();
+    const std::string line = label.substr(at, end - at);
+    if (line.starts_with("scene: ")) out.scene = line.substr(7);
+    if (line.starts_with("dt: ")) {
+      char* stop = nullptr;
+      const double dt = std::strtod(line.c_str() + 4, &stop);
+      if (stop && *stop == '\0' && dt > 0 && std::isfinite(dt)) out.dt = dt;
+    }
+    at = end + 1;
+  }
+  return out;
+}
+
+bool sameFile(const std::string& a, const std::string& b) {
+  std::error_code ec;
+  if (std::filesystem::exists(a, ec) && std::filesystem::exists(b, ec)) return std::filesystem::equivalent(a, b, ec);
+  return std::filesystem::path(a).lexically_normal() == std::filesystem::path(b).lexically_normal();
+}
+
 }  // namespace
 
 int runCommand(const std::vector<std::string>& argv) {
-  const Args args("run", argv, {"time", "steps", "dt", "integrator", "iterations", "trace", "trace-every"},
-                  {"json", "quiet"});
+  const Args args("run", argv,
+                  {"time", "steps", "dt", "integrator", "iterations", "trace", "trace-every", "save-state", "load-state"},
+                  {"json", "quiet", "force"});
   if (args.help()) {
     std::fputs(kRunHelp, stdout);
     return kExitOk;
   }
-  if (args.positional().size() != 1) throw UsageError("run: expected one scene file, got " + std::to_string(args.positional().size()));
+  const auto load_state = args.value("load-state");
+  if (args.flag("force") && !load_state) throw UsageError("run: --force goes with --load-state");
+  if (args.positional().size() != 1 && !(load_state && args.positional().empty()))
+    throw UsageError("run: expected one scene file, got " + std::to_string(args.positional().size()));
   if (args.value("time") && args.value("steps")) throw UsageError("run: give --time or --steps, not both");
   const auto time = args.number("time");
   if (time && *time < 0) throw UsageError("run: --time must be >= 0");
@@ -107,20 +158,54 @@ int runCommand(const std::vector<std::string>& argv) {
   const auto trace_every = args.integer("trace-every", 1).value_or(1);
   const bool json = args.flag("json");
 
-  std::unique_ptr<lua::Scene> scene = loadOrReport(args.positional()[0]);
+  // --load-state: the snapshot first, for the scene it names.
+  WorldSnapshot loaded;
+  StateLabel label;
+  if (load_state) {
+    try {
+      loaded = deserializeSnapshot(readFile(*load_state));
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "run: --load-state %s: %s\n", load_state->c_str(), e.what());
+      return kExitUsage;
+    }
+    label = parseStateLabel(loaded.label());
+    if (args.positional().empty() && label.scene.empty()) {
+      std::fprintf(stderr, "run: --load-state %s names no scene file: give it\n", load_state->c_str());
+      return kExitUsage;
+    }
+    if (!args.positional().empty() && !args.flag("force") && !sameFile(args.positional()[0], label.scene)) {
+      std::fprintf(stderr, "run: --load-state %s is a snapshot of %s, not of %s (--force to load it anyway)\n",
+                   load_state->c_str(), label.scene.c_str(), args.positional()[0].c_str());
+      return kExitUsage;
+    }
+  }
+  const std::string scene_path = args.positional().empty() ? label.scene : args.positional()[0];
+  std::unique_ptr<lua::Scene> scene = loadOrReport(scene_path);
   if (!scene) return kExitSceneError;
   World& world = scene->world();
-  // Command-line settings override the scene's (applied after PopulateWorld, which may set them).
+  if (load_state) {
+    try {
+      scene->restore(loaded);
+    } catch (const lua::SceneError& e) {
+      std::fprintf(stderr, "run: --load-state %s: %s\n", load_state->c_str(), e.what());
+      return kExitSceneError;
+    }
+    if (label.dt) scene->setDt(*label.dt);
+  }
+  // Command-line settings override the scene's (applied after PopulateWorld, which may set them,
+  // and after a restored state, which carries them).
   if (dt) scene->setDt(*dt);
   if (integrator) world.setIntegrator(*integrator);
   if (iterations) world.setIterations(static_cast<int>(std::min(*iterations, 10000L)));
 
   std::string refused;
-  const std::optional<RunLength> length = runLength(*scene, time, steps, refused);
+  std::optional<RunLength> length = runLength(*scene, time, steps, refused);
   if (!length) {
     std::fprintf(stderr, "run: %s\n", refused.c_str());
     return time || steps || dt ? kExitUsage : kExitSceneError;  // the command line's or the scene's settings
   }
+  // Resumed: until the same end time, by the steps the uninterrupted run would still take.
+  if (load_state && !steps) length->full_steps = std::max(0L, length->full_steps - world.stepCount());
 
   std::unique_ptr<Trace> trace;
   try {
@@ -144,6 +229,14 @@ int runCommand(const std::vector<std::string>& argv) {
   } catch (const lua::SceneError& e) {
     std::fprintf(stderr, "%s\n", sceneErrorText(e).c_str());
     return kExitSceneError;
+  }
+  if (const auto path = args.value("save-state")) {
+    try {
+      writeFile(*path, serializeSnapshot(scene->snapshot()));
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "run: --save-state %s: %s\n", path->c_str(), e.what());
+      return kExitUsage;
+    }
   }
 
   int status = kExitOk;

@@ -217,6 +217,13 @@ local ForceHandle = {}
 ---Removes the force (no-op if already removed or expired).
 function ForceHandle:remove() end
 
+---A snapshot of the world (world:snapshot()), for world:restore.
+---@class rigidlab.Snapshot
+---@field time number simulated time when it was taken, s
+---@field step_count integer steps made when it was taken
+---@field bytes integer memory it holds
+local Snapshot = {}
+
 ---Options every function that makes a body accepts (world:add_body takes only these).
 ---@class rigidlab.BodyOptions
 ---@field position? rigidlab.VecLike body origin, default {0, 0}
@@ -575,6 +582,17 @@ function World:step(dt) end
 ---Σ ½ m v² + ½ I ω², J
 ---@return number
 function World:kinetic_energy() end
+
+---The whole simulation state now (bodies, shapes, joints, forces, contacts and their warm starts,
+---sleep timers, the clock, the settings), to come back to with world:restore. Not the scene's
+---Lua variables. Kept until the scene closes; its memory counts against the scene's limit.
+---@return rigidlab.Snapshot
+function World:snapshot() end
+
+---Puts the world back to a snapshot of this scene, bit-exactly: the steps that follow repeat the
+---steps that followed the snapshot. Handles of bodies made after it are stale afterwards.
+---@param snapshot rigidlab.Snapshot
+function World:restore(snapshot) end
 
 ---Gravity (zero at the origin) plus springs, J
 ---@return number

@@ -59,9 +59,13 @@ function OnStep(world, dt)
   if world.time <= rest_time then
     for i, plank in ipairs(planks) do worst_rest_motion = math.max(worst_rest_motion, (plank.position - start[i]):length()) end
     sag_at_rest = post_y - mid_height()
-  elseif not barrel then
-    barrel = world:add_circle{ radius = 0.2, position = {-span / 2 - 0.3, post_y + 0.2}, mass = 5, friction = 0.6 }
+  elseif not (barrel or world:find("barrel")) then
+    -- Found by name below rather than remembered only in a Lua variable: a run resumed from a
+    -- snapshot (rigidlab run --load-state) has the barrel in its world but not in this variable.
+    barrel = world:add_circle{ name = "barrel", radius = 0.2, position = {-span / 2 - 0.3, post_y + 0.2}, mass = 5,
+                               friction = 0.6 }
   else
+    barrel = barrel or world:find("barrel")
     -- Pushed like a walker: 0.7 m g forward climbs planks steeper than the steepest, 29°
     -- (tan 29° = 0.56: a rolling barrel climbs while F cos θ > m g sin θ).
     barrel:apply_force{ 0.7 * 5 * -world.gravity.y, 0 }

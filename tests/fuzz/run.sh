@@ -34,7 +34,12 @@ for f in "$here"/regressions/world/*; do [ -f "$f" ] && world_regressions+=("$f"
 if [ ${#world_regressions[@]} -gt 0 ]; then
   "$build/fuzz_world" "${world_regressions[@]}" >"$work/replay_world.log" 2>&1 || { status=1; tail -40 "$work/replay_world.log"; }
 fi
-echo "fuzz: replayed $(( ${#existing[@]} + ${#world_regressions[@]} )) regression inputs"
+snapshot_regressions=()
+for f in "$here"/regressions/snapshot/*; do [ -f "$f" ] && snapshot_regressions+=("$f"); done
+if [ ${#snapshot_regressions[@]} -gt 0 ]; then
+  "$build/fuzz_snapshot" "${snapshot_regressions[@]}" >"$work/replay_snapshot.log" 2>&1 || { status=1; tail -40 "$work/replay_snapshot.log"; }
+fi
+echo "fuzz: replayed $(( ${#existing[@]} + ${#world_regressions[@]} + ${#snapshot_regressions[@]} )) regression inputs"
 
 # 2. Fuzz each target for $seconds.
 fuzz() {  # TARGET OPTION... -- SEED_DIR...
@@ -64,4 +69,5 @@ fuzz() {  # TARGET OPTION... -- SEED_DIR...
 }
 fuzz fuzz_scene -dict="$here/lua.dict" -max_len=8192 -- "$root/scripts/scenes" "$root/tests/scenes"
 fuzz fuzz_world -max_len=4096 --
+fuzz fuzz_snapshot -max_len=65536 --
 exit $status

@@ -88,6 +88,7 @@ TEST_CASE("the editor annotations list exactly the API's names") {
   CHECK(classes.at("PulleyOptions") == names({&api::kPulleyOptions}));
   CHECK(classes.at("GearOptions") == names({&api::kGearOptions}));
   CHECK(classes.at("Draw") == names({&api::kDrawFunctions}));
+  CHECK(classes.at("Snapshot") == names({&api::kSnapshotFields}));
   CHECK(classes.at("MouseEvent") == names({&api::kMouseEventFields}));
   CHECK(classes.at("ControlOptions") == names({&api::kControlOptions}));
   CHECK(classes.at("ExactState") == std::set<std::string>{"position", "velocity", "angle", "angular_velocity"});

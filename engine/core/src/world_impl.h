@@ -19,7 +19,9 @@
 namespace rigidlab {
 
 struct ForceEntry {
-  std::unique_ptr<Force> force;
+  // Shared, so that a copy of the world (World::snapshot) can keep a force it cannot clone (a
+  // script's, Force::clone) as the same object; forces it can clone are copied (world_snapshot.cpp).
+  std::shared_ptr<Force> force;
   BodyId a, b;
   double expires_at = World::kForever;  // simulation time at which the force stops acting [s]
   bool next_step_only = false;          // World::kNextStep: removed after the next step
@@ -38,6 +40,29 @@ struct SimClock {
     carry = (s - t) - y;
     t = s;
   }
+};
+
+// The broad phase object holds only scratch rebuilt every step (broad_phase.h), so a copy of the
+// world (World::snapshot) gets a fresh object of the same kind; WorldImpl stays copyable.
+struct BroadPhaseHolder {
+  std::unique_ptr<BroadPhase> p;
+  BroadPhaseHolder() = default;
+  BroadPhaseHolder(const BroadPhaseHolder& o) { *this = o; }
+  BroadPhaseHolder(BroadPhaseHolder&&) noexcept = default;
+  BroadPhaseHolder& operator=(const BroadPhaseHolder& o) {
+    if (this == &o) return *this;
+    if (!o.p) p.reset();
+    else if (dynamic_cast<const AllPairsBroadPhase*>(o.p.get())) p = std::make_unique<AllPairsBroadPhase>();
+    else p = std::make_unique<GridBroadPhase>();
+    return *this;
+  }
+  BroadPhaseHolder& operator=(BroadPhaseHolder&&) noexcept = default;
+  BroadPhaseHolder& operator=(std::unique_ptr<BroadPhase> q) {
+    p = std::move(q);
+    return *this;
+  }
+  BroadPhase* operator->() const { return p.get(); }
+  explicit operator bool() const { return p != nullptr; }
 };
 
 struct WorldImpl {
@@ -166,7 +191,7 @@ struct WorldImpl {
   std::vector<uint32_t> carrier;                 // per slot: the jumping kinematic body it presses most
   std::vector<double> carrier_weight;            // per slot: Σ P of its contacts with that body
 
-  std::unique_ptr<BroadPhase> broad_phase;
+  BroadPhaseHolder broad_phase;
   std::vector<Proxy> proxies;
   // Events (contact_events.cpp, sensor.cpp, pre_solve.cpp). The counters say whether any shape asks
   // for them, so that a world without events does none of this work.

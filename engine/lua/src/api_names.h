@@ -33,7 +33,10 @@ inline const std::vector<std::string_view> kWorldMethods = {
     "add_body", "add_box", "add_circle", "add_polygon", "add_capsule", "add_segment", "add_chain", "add_spring",
     "add_damper", "add_force", "add_revolute", "add_prismatic", "add_distance", "add_weld", "add_wheel",
     "add_motor_joint", "add_friction_joint", "add_pulley", "add_gear", "bodies", "find", "joints", "find_joint",
-    "remove", "step", "kinetic_energy", "potential_energy", "contact_events", "ray_cast", "ray_cast_all", "query_box", "query_point", "overlap", "shape_cast", "explode"};
+    "remove", "step", "kinetic_energy", "potential_energy", "contact_events", "ray_cast", "ray_cast_all", "query_box", "query_point", "overlap", "shape_cast", "explode",
+    "snapshot", "restore"};
+// A snapshot handle's fields (world:snapshot()), all read-only.
+inline const std::vector<std::string_view> kSnapshotFields = {"time", "step_count", "bytes"};
 
 // What every function that makes a body takes (add_body takes only these).
 inline const std::vector<std::string_view> kBodyOptions = {

@@ -51,6 +51,9 @@ struct Scene::Impl {
   // --- sandbox mod hooks (scene_controls.cpp, lua_mouse_event.cpp)
   sol::object on_mouse, on_control;  // OnMouse, OnControl, or nil
   std::vector<double> control_values;  // current values of settings.controls (sliders; 0 for buttons)
+
+  // world:snapshot()'s, by the index their handles hold (lua_snapshot.cpp)
+  std::vector<WorldSnapshot> snapshots;
 };
 
 // Handles are full userdata holding these plain structs, with metatables of the host's own

@@ -15,6 +15,7 @@
 #include "lua_force.h"
 #include "lua_query.h"
 #include "lua_shape.h"
+#include "lua_snapshot.h"
 #include "rigidlab/error.h"
 #include "rigidlab/lua/scene_text.h"
 
@@ -192,6 +193,7 @@ sol::object method(lua_State* L, std::string_view name) {
   if (!f) f = jointWorldMethod(name);
   if (!f) f = queryWorldMethod(name);
   if (!f) f = ownMethod(name);
+  if (!f) f = snapshotWorldMethod(name);
   if (!f) return sol::make_object(L, sol::lua_nil);
   lua_pushcfunction(L, f);
   return sol::stack::pop<sol::object>(L);

@@ -12,6 +12,7 @@
 #include "bindings.h"
 #include "lua_args.h"
 #include "lua_events.h"
+#include "lua_snapshot.h"
 #include "rigidlab/error.h"
 #include "rigidlab/lua/data_directory.h"
 #include "rigidlab/lua/scene_text.h"
@@ -222,6 +223,7 @@ void setUp(Scene::Impl& s) {
   registerShapeType(L);
   registerJointType(L);
   registerControlsType(L);
+  registerSnapshotType(L);
   s.handles = s.host->lua().create_table();
   s.user_data = s.host->lua().create_table();
   s.shape_handles = makeWeakTable(L);
@@ -337,6 +339,7 @@ Scene::Impl::~Impl() {
   // closed") instead of touching a destroyed one, whatever Lua code might run while the state
   // closes.
   world.reset();
+  snapshots.clear();  // they share the Lua forces, which release their references now
   on_step = check = on_key = on_draw = exact = sol::object();
   for (const EventHook& h : eventHooks()) this->*h.slot = sol::object();
   pre_solve_functions = sol::table();

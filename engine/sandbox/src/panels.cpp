@@ -25,6 +25,32 @@ namespace {
 
 const ImVec4 kErrorColor(1.0f, 0.45f, 0.4f, 1.0f), kWarnColor(1.0f, 0.8f, 0.3f, 1.0f), kDimColor(0.6f, 0.6f, 0.65f, 1.0f);
 
+// Rewind (rewind.cpp): the kept states, their memory, a slider to scrub them, step back, save.
+void timelineSection(Session& s) {
+  Timeline& t = s.timeline;
+  if (t.empty()) return;
+  ImGui::Separator();
+  ImGui::Text("timeline: %.1f s, %zu states (1 per %d steps), %.1f MiB (limit %.0f MiB)", t.span(), t.size(),
+              t.limits().every, static_cast<double>(t.bytes()) / (1 << 20),
+              static_cast<double>(t.limits().max_bytes) / (1 << 20));
+  int index = static_cast<int>(t.cursor());
+  ImGui::PushItemWidth(-1);
+  if (ImGui::SliderInt("##timeline", &index, 0, static_cast<int>(t.size()) - 1, "", ImGuiSliderFlags_AlwaysClamp))
+    seekState(s, static_cast<size_t>(index));
+  ImGui::PopItemWidth();
+  if (ImGui::Button("< Back")) stepBack(s);  // also Shift+N
+  ImGui::SameLine();
+  if (ImGui::Button("Save state")) {
+    std::string message;
+    saveState(s, suggestStatePath(s), message);
+    std::printf("%s\n", message.c_str());
+    s.setStatus(message, 8.0);
+  }
+  if (t.rewound())
+    ImGui::TextColored(kWarnColor, "rewound to t = %.3f s: resuming or editing drops the %zu later states",
+                       t.at(t.cursor()).time, t.size() - 1 - t.cursor());
+}
+
 void sceneSection(Session& s) {
   const lua::SceneSettings& settings = s.scene->settings();
   ImGui::TextWrapped("%s", overlayText(settings.title, 256).c_str());
@@ -53,6 +79,7 @@ void sceneSection(Session& s) {
   ImGui::SameLine();
   if (ImGui::Button("Scenes")) s.show_browser = !s.show_browser;  // also Ctrl+O
   if (s.undo.canUndo()) ImGui::TextColored(kDimColor, "undo: %s", s.undo.undoLabel().c_str());
+  timelineSection(s);
 }
 
 void jointToolSection(ToolState& t) {

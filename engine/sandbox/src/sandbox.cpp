@@ -231,6 +231,7 @@ int runSandbox(const SandboxOptions& options) {
         if (quit && !(automated && !options.screenshot.empty())) break;
 
         updateHotReload(s);
+        syncTimeline(s);  // rewind.cpp: an edit at a past state drops its future
         advance(s, automated ? kAutomationFrameSeconds : measured);
         updateTools(s);
 

@@ -120,6 +120,9 @@ void adoptScene(Session& s, LoadResult r) {
   }
   s.undo.clear();
   s.history.clear();
+  s.timeline.clear();
+  recordState(s);
+  s.timeline_undo_mark = 0;
   s.energy.clear();
   s.energy.sample(s.world());
   s.exact.reset(*s.scene);
@@ -215,6 +218,7 @@ void advance(Session& s, double frame_seconds) {
   for (int i = 0; i < plan.steps; ++i) {
     s.history.capture(s.world());
     if (!guardedStep(s, plan.step_dt)) break;
+    recordState(s);  // rewound: drops the states after the one shown first (timeline.h)
     ++s.steps_last_frame;
   }
   s.last_steps_ms = std::chrono::duration<double, std::milli>(Session::Clock::now() - t0).count();
@@ -226,9 +230,13 @@ void advance(Session& s, double frame_seconds) {
 
 void stepOnce(Session& s) {
   setPaused(s, true);
+  if (stepForward(s)) return;  // rewound: the next kept state
   s.history.capture(s.world());
   s.run_error.clear();
-  if (guardedStep(s, s.dt())) afterSteps(s);
+  if (guardedStep(s, s.dt())) {
+    recordState(s);
+    afterSteps(s);
+  }
   s.alpha = 1.0;
 }
 

@@ -20,6 +20,7 @@
 #include "hot_reload.h"
 #include "interpolation.h"
 #include "rigidlab/lua/scene.h"
+#include "timeline.h"
 #include "undo.h"
 
 namespace rigidlab::sandbox {
@@ -118,6 +119,8 @@ struct Session {
   UndoHistory undo;
   TransformHistory history;
   EnergyHistory energy;
+  Timeline timeline;              // recent states, for stepping back and scrubbing (rewind.cpp)
+  size_t timeline_undo_mark = 0;  // undo.size() when the timeline last looked (syncTimeline)
   ExactReadout exact;
   size_t incidents_seen = 0;  // World::incidents() already reported
   SaveDialog save;
@@ -203,6 +206,23 @@ void cancelGesture(Session& s);
 bool saveWorld(Session& s, const std::filesystem::path& path, std::string& message);
 // A file name next to the scene that does not exist yet: "<stem>_saved.lua", "<stem>_saved_2.lua", ...
 std::filesystem::path suggestSavePath(const Session& s);
+
+// --- rewind (rewind.cpp; docs/sandbox.md "Rewind")
+// After a step or a load: the world's state into the timeline, if due.
+void recordState(Session& s);
+// Shift+N: pauses and shows the kept state before the one shown (false if there is none).
+bool stepBack(Session& s);
+// Rewound, N: the kept state after the one shown (false at the newest: then N steps anew).
+bool stepForward(Session& s);
+// The timeline slider: shows kept state `index` (0 = oldest), paused.
+void seekState(Session& s, size_t index);
+// Per frame: an edit made while rewound drops the states after the one shown.
+void syncTimeline(Session& s);
+// Writes the world's state as a snapshot file (`rigidlab run --load-state` reads it), for a bug
+// report. False with the reason in `message`.
+bool saveState(Session& s, const std::filesystem::path& path, std::string& message);
+// "<stem>_state.snap" next to the scene, "<stem>_state_2.snap", ... (a name not taken yet).
+std::filesystem::path suggestStatePath(const Session& s);
 
 // Scene files offered by the browser: scripts/scenes/*.lua, sorted.
 std::vector<std::filesystem::path> browsableScenes();

@@ -33,7 +33,8 @@ constexpr size_t kPreviewPoints = 64;
 constexpr Shortcut kShortcuts[] = {
     {"F1", "show or hide this help"},
     {"Space", "pause / resume"},
-    {"N", "single step (pauses first)"},
+    {"N", "single step (pauses first); rewound: the next kept state"},
+    {"Shift+N", "step backwards through the kept states (rewind)"},
     {"R", "reset: rebuild the scene from its file"},
     {"F5", "reload the scene now"},
     {"Ctrl+Z / Ctrl+Y (Ctrl+Shift+Z)", "undo / redo an edit"},
@@ -214,7 +215,10 @@ bool handleKey(Session& s, const SDL_KeyboardEvent& key) {
   switch (k) {
     case SDLK_F1: s.show_help = !s.show_help; break;
     case SDLK_SPACE: setPaused(s, !s.paused); break;
-    case SDLK_n: stepOnce(s); break;
+    case SDLK_n:
+      if (shift) stepBack(s);  // rewind.cpp
+      else stepOnce(s);
+      break;
     case SDLK_r:
     case SDLK_F5:
       if (s.file.empty()) s.setStatus("no scene file: open one with Ctrl+O");

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string_view>
 
 #include <Eigen/Core>
@@ -113,6 +114,11 @@ class Force {
   virtual void draw(DebugDraw& /*dd*/, const BodyState& /*a*/, const BodyState* /*b*/) const {}
   // A short name for messages and statistics ("spring", "damper", "lua", ...).
   virtual std::string_view kind() const = 0;
+  // An independent copy, for World::snapshot and World::restore. The default, nullptr, says the
+  // force cannot be copied (a script's callback): a snapshot then keeps the object itself, and a
+  // snapshot read from a file (world_snapshot.h) takes the restoring world's force of the same id
+  // and kind. A force whose behaviour depends on state it changes must return a copy.
+  virtual std::unique_ptr<Force> clone() const { return nullptr; }
 };
 
 struct ForceId {

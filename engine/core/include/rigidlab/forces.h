@@ -34,6 +34,7 @@ class SpringForce final : public Force {
   double potentialEnergy(const BodyState& a, const BodyState* b) const override;  // ½ k (L − L0)²
   void draw(DebugDraw& dd, const BodyState& a, const BodyState* b) const override;
   std::string_view kind() const override { return "spring"; }
+  std::unique_ptr<Force> clone() const override { return std::make_unique<SpringForce>(*this); }
   const SpringDef& def() const { return def_; }
   SpringDef& def() { return def_; }
   // End points in world coordinates for the given states.
@@ -59,6 +60,7 @@ class DamperForce final : public Force {
   bool allowsSleep() const override { return true; }
   void draw(DebugDraw& dd, const BodyState& a, const BodyState* b) const override;
   std::string_view kind() const override { return "damper"; }
+  std::unique_ptr<Force> clone() const override { return std::make_unique<DamperForce>(*this); }
   const DamperDef& def() const { return def_; }
   DamperDef& def() { return def_; }
 
@@ -84,6 +86,7 @@ class MouseForce final : public Force {
   void evaluate(const ForceInput& in, ForceOutput& out) override;
   void draw(DebugDraw& dd, const BodyState& a, const BodyState* b) const override;
   std::string_view kind() const override { return "mouse"; }
+  std::unique_ptr<Force> clone() const override { return std::make_unique<MouseForce>(*this); }
   void setTarget(const Vec2& target) { def_.target = target; }
   const MouseForceDef& def() const { return def_; }
   // Stiffness and damping for a drag that feels the same on any body: natural frequency `hertz`,
@@ -103,6 +106,9 @@ class ConstantForce final : public Force {
   bool dependsOnState() const override { return local_point_.has_value(); }  // torque depends on the angle
   void draw(DebugDraw& dd, const BodyState& a, const BodyState* b) const override;
   std::string_view kind() const override { return "constant"; }
+  std::unique_ptr<Force> clone() const override { return std::make_unique<ConstantForce>(*this); }
+  const Vec2& force() const { return force_; }
+  const std::optional<Vec2>& localPoint() const { return local_point_; }
 
  private:
   Vec2 force_;

@@ -22,6 +22,7 @@
 #include "rigidlab/force.h"
 #include "rigidlab/forces.h"
 #include "rigidlab/joint.h"
+#include "rigidlab/world_snapshot.h"
 
 namespace rigidlab {
 
@@ -474,6 +475,12 @@ class World {
   using PreSolveFn = std::function<bool(const ContactInfo&)>;
   void setPreSolve(PreSolveFn callback);
   void draw(DebugDraw& dd, const DrawOptions& options = {}) const;
+
+  // --- snapshots (world_snapshot.h): the whole state, to come back to bit-exactly. Not allowed
+  // while stepping. restore() throws SnapshotError, leaving the world as it was, for an empty
+  // snapshot or one from a file naming a force (by id and kind) this world does not have.
+  WorldSnapshot snapshot() const;
+  void restore(const WorldSnapshot& snapshot);
 
  private:
   std::unique_ptr<WorldImpl> impl_;

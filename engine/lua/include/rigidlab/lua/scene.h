@@ -213,6 +213,12 @@ class Scene {
   // thread waited for the processor (a loaded machine).
   double eventCpuSeconds() const;
 
+  // The world's snapshot labelled "scene: <file>\ndt: <dt as %a>\n" (world_snapshot.h), and a restore that also
+  // mends the scene's Lua side (forgets handles of bodies that are gone; docs/lua-api.md
+  // "Snapshots"). The scene's Lua variables are not in a snapshot. restore() throws SceneError.
+  WorldSnapshot snapshot() const;
+  void restore(const WorldSnapshot& snapshot);
+
   struct Impl;
 
  private:

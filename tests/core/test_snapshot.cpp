@@ -1,0 +1,320 @@
+// Whole-simulation snapshots (world_snapshot.h): the steps after a restore give the same bits as the
+// steps after the snapshot was taken, in memory and through the file format; a corrupt or truncated
+// file is a SnapshotError.
+#include <doctest/doctest.h>
+
+#include <bit>
+#include <cstring>
+
+#include "rigidlab/world_snapshot.h"
+#include "test_util.h"
+
+using namespace rigidlab;
+using namespace rigidlab::test;
+
+namespace {
+
+constexpr double kDt = 1.0 / 60.0;
+
+struct Hash {
+  uint64_t h = 1469598103934665603ull;
+  void add(uint64_t v) {
+    for (int i = 0; i < 8; ++i) {
+      h ^= (v >> (8 * i)) & 0xff;
+      h *= 1099511628211ull;
+    }
+  }
+  void add(double x) { add(std::bit_cast<uint64_t>(x)); }
+  void add(const Vec2& v) {
+    add(v.x());
+    add(v.y());
+  }
+};
+
+// Every body's state, every contact's impulses, every joint's state, the sensors' contents and
+// the events: what a later step or a script could see.
+uint64_t stateHash(const World& w) {
+  Hash h;
+  h.add(static_cast<uint64_t>(w.stepCount()));
+  h.add(w.time());
+  for (BodyId id : w.bodyIds()) {
+    const Body& b = w.body(id);
+    h.add(uint64_t{b.uid});
+    h.add(b.center);
+    h.add(b.angle);
+    h.add(b.velocity);
+    h.add(b.angular_velocity);
+    h.add(uint64_t{b.awake} | uint64_t{b.frozen} << 1);
+    h.add(b.sleep_time);
+  }
+  for (const ContactInfo& c : w.contacts()) {
+    h.add(uint64_t{c.a.index} << 32 | c.b.index);
+    for (int k = 0; k < c.count; ++k) {
+      h.add(c.points[k]);
+      h.add(c.normal_impulses[k]);
+      h.add(c.tangent_impulses[k]);
+    }
+  }
+  for (JointId j : w.jointIds()) {
+    const JointState s = w.jointState(j);
+    h.add(s.angle);
+    h.add(s.translation);
+    h.add(s.reaction_force);
+    h.add(s.reaction_torque);
+  }
+  for (const auto& e : w.contactEvents()) h.add(e.normal_impulse);
+  for (const auto& e : w.sensorEvents()) h.add(uint64_t{e.visitor.index} << 1 | e.begin);
+  h.add(static_cast<uint64_t>(w.incidents().size()));
+  return h.h;
+}
+
+// A scene with a bit of everything a snapshot must carry: a stack with warm-started contacts,
+// a body asleep from the start and one that falls asleep, a kinematic platform, a sensor, joints
+// (a motorised revolute, a distance spring, one that breaks), springs, a damper, a timed push, a
+// mouse drag, a ball in free flight (located impacts) and a chain.
+struct Scene {
+  World w;
+  BodyId platform, ball, grabbed;
+  ShapeId sensor;
+  Scene() {
+    BodyDef g;
+    g.type = BodyType::Static;
+    const BodyId ground = w.createBody(g);
+    World::ChainDef chain;
+    chain.points = {{20, 0}, {5, 0}, {0, -0.2}, {-5, 0}, {-20, 0}};
+    w.createChain(ground, chain);
+    for (int i = 0; i < 5; ++i) addBox(w, 1.0, 1.0, {-3.0, 0.5 + i * 1.0});
+    BodyDef asleep;
+    asleep.shape = makeBox(1, 1);
+    asleep.position = {8, 0.5};
+    asleep.awake = false;
+    w.createBody(asleep);
+    BodyDef kin;
+    kin.type = BodyType::Kinematic;
+    kin.shape = makeBox(3, 0.2);
+    kin.position = {3, 2};
+    kin.velocity = {0.5, 0};
+    platform = w.createBody(kin);
+    addBox(w, 0.5, 0.5, {3, 2.5});
+    BodyDef s;
+    s.type = BodyType::Static;
+    s.position = {-3, 3};
+    const BodyId sensor_body = w.createBody(s);
+    ShapeDef sd;
+    sd.shape = makeBox(2, 8);
+    sd.sensor = true;
+    sensor = w.createShape(sensor_body, sd);
+    ball = addCircle(w, 0.3, {0, 6});
+    w.setVelocity(ball, {1.5, 0});
+    const BodyId bob = addCircle(w, 0.2, {-8, 4});
+    JointDef pin;
+    pin.type = JointType::Revolute;
+    pin.a = bob;
+    pin.anchor_a = {-8, 5};
+    pin.enable_motor = true;
+    pin.motor_speed = 1.0;
+    pin.max_motor_torque = 0.5;
+    w.createJoint(pin);
+    const BodyId a = addBox(w, 0.4, 0.4, {-12, 4});
+    const BodyId b = addBox(w, 0.4, 0.4, {-12, 2.5});
+    JointDef dist;
+    dist.type = JointType::Distance;
+    dist.a = a;
+    dist.b = b;
+    dist.anchor_a = {-12, 4};
+    dist.anchor_b = {-12, 2.5};
+    dist.enable_spring = true;
+    dist.spring_hertz = 2.0;
+    dist.spring_damping = 0.1;
+    w.createJoint(dist);
+    // A spinner whose motor winds it up until the pin's load breaks it (at step 47).
+    const BodyId spinner = addBox(w, 0.4, 0.4, {-16, 4});
+    JointDef weak;
+    weak.type = JointType::Revolute;
+    weak.a = spinner;
+    weak.anchor_a = {-16, 4.5};
+    weak.enable_motor = true;
+    weak.motor_speed = 30.0;
+    weak.max_motor_torque = 1.0;
+    weak.break_force = 8.0;
+    w.createJoint(weak);
+    SpringDef spring;
+    spring.a = addCircle(w, 0.25, {12, 5});
+    spring.anchor = {12, 7};
+    spring.stiffness = 40.0;
+    spring.rest_length = 1.0;
+    spring.damping = 0.2;
+    w.addSpring(spring);
+    w.addDamper({spring.a, 0.3, 0.01});
+    grabbed = addBox(w, 0.6, 0.3, {14, 1});
+    w.addForce(std::make_unique<ConstantForce>(Vec2(3.0, 0.0), Vec2(0.1, 0.0)), grabbed, {}, 0.75);
+    MouseForceDef m = MouseForce::forBody(w.body(grabbed), {14, 1});
+    m.target = {15, 3};
+    w.addForce(std::make_unique<MouseForce>(m), grabbed);
+  }
+};
+
+void run(World& w, int steps, std::vector<uint64_t>* hashes = nullptr) {
+  for (int i = 0; i < steps; ++i) {
+    w.step(kDt);
+    if (hashes) hashes->push_back(stateHash(w));
+  }
+}
+
+// FNV-1a as the format uses it, to re-sign a tampered payload.
+uint64_t fnv1a(std::string_view bytes) {
+  uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : bytes) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+void resign(std::string& file) {
+  const size_t start = 18 + 12;
+  const uint64_t sum = fnv1a(std::string_view(file).substr(start, file.size() - start - 8));
+  for (int i = 0; i < 8; ++i) file[file.size() - 8 + i] = static_cast<char>((sum >> (8 * i)) & 0xff);
+}
+
+}  // namespace
+
+TEST_CASE("snapshot: restore in memory gives the same bits, step by step, as the run it was taken from") {
+  Scene s;
+  run(s.w, 30);
+  const WorldSnapshot snap = s.w.snapshot();
+  CHECK(snap.stepCount() == 30);
+  CHECK(s.w.jointIds().size() == 3);
+  CHECK(snap.time() == s.w.time());
+  std::vector<uint64_t> a, b;
+  run(s.w, 200, &a);
+  // Edits after the snapshot are undone too.
+  s.w.destroyBody(s.ball);
+  addBox(s.w, 1, 1, {0, 10});
+  s.w.setGravity({0, 3});
+  s.w.restore(snap);
+  CHECK(s.w.stepCount() == 30);
+  CHECK(s.w.isValid(s.ball));
+  run(s.w, 200, &b);
+  CHECK(a == b);
+  // The scene did what the snapshot must carry: something slept, the weak joint broke, the sensor
+  // saw bodies, contacts were warm-started.
+  CHECK(s.w.jointIds().size() == 2);
+  bool slept = false;
+  for (BodyId id : s.w.bodyIds()) slept |= s.w.body(id).isDynamic() && !s.w.body(id).awake;
+  CHECK(slept);
+  CHECK(!s.w.contacts().empty());
+  // A snapshot can be restored again and again.
+  s.w.restore(snap);
+  std::vector<uint64_t> c;
+  run(s.w, 200, &c);
+  CHECK(a == c);
+}
+
+TEST_CASE("snapshot: through the file format, in a fresh world, the same bits") {
+  Scene s;
+  run(s.w, 30);
+  const std::string bytes = serializeSnapshot(s.w.snapshot());
+  std::vector<uint64_t> a, b;
+  run(s.w, 200, &a);
+  World fresh;
+  fresh.restore(deserializeSnapshot(bytes));
+  run(fresh, 200, &b);
+  CHECK(a == b);
+  // Serializing is itself exact: the read state writes the same bytes.
+  World again;
+  again.restore(deserializeSnapshot(bytes));
+  CHECK(serializeSnapshot(again.snapshot()) == bytes);
+}
+
+TEST_CASE("snapshot: a label travels through the file") {
+  World w;
+  addCircle(w, 1, {0, 0});
+  WorldSnapshot s = w.snapshot();
+  s.setLabel("scripts/scenes/pyramid.lua");
+  CHECK(deserializeSnapshot(serializeSnapshot(s)).label() == "scripts/scenes/pyramid.lua");
+  CHECK(deserializeSnapshot(serializeSnapshot(s)).bodyCount() == 1);
+}
+
+TEST_CASE("snapshot: a force that cannot be copied is kept in memory and taken from the world from a file") {
+  World w;
+  const BodyId b = addCircle(w, 0.5, {2, 0});
+  w.setGravity({0, 0});
+  const ForceId f = w.addForce(std::make_unique<HookeToOrigin>(4.0), b);
+  run(w, 10);
+  const WorldSnapshot snap = w.snapshot();
+  const std::string bytes = serializeSnapshot(snap);
+  std::vector<uint64_t> a, b2, c;
+  run(w, 60, &a);
+  w.removeForce(f);
+  w.restore(snap);  // in memory: the snapshot kept the object
+  CHECK(w.isValid(f));
+  run(w, 60, &b2);
+  CHECK(a == b2);
+  // From the file, a world without that force cannot take it ...
+  World fresh;
+  const std::string message = [&] {
+    try {
+      fresh.restore(deserializeSnapshot(bytes));
+    } catch (const SnapshotError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  }();
+  CHECK(message.find("test_hooke") != std::string::npos);
+  CHECK(fresh.bodyCount() == 0);  // left as it was
+  // ... a world that made it the same way can.
+  World same;
+  same.setGravity({0, 0});
+  same.addForce(std::make_unique<HookeToOrigin>(4.0), addCircle(same, 0.5, {2, 0}));
+  same.restore(deserializeSnapshot(bytes));
+  run(same, 60, &c);
+  CHECK(a == c);
+}
+
+TEST_CASE("snapshot: not while stepping, not empty") {
+  World w;
+  CHECK_THROWS_AS(w.restore(WorldSnapshot{}), SnapshotError);
+  CHECK_THROWS_AS(serializeSnapshot(WorldSnapshot{}), SnapshotError);
+}
+
+TEST_CASE("snapshot: a truncated, extended, corrupt or foreign file is a SnapshotError") {
+  Scene s;
+  run(s.w, 30);
+  const std::string bytes = serializeSnapshot(s.w.snapshot());
+  const auto error = [](std::string_view b) {
+    try {
+      World w;
+      w.restore(deserializeSnapshot(b));
+      w.step(kDt);
+    } catch (const SnapshotError& e) {
+      return std::string(e.what());
+    } catch (const InputError& e) {
+      return std::string("input: ") + e.what();
+    }
+    return std::string("(no error)");
+  };
+  CHECK(error(bytes) == "(no error)");
+  CHECK(error("") .find("not a rigidlab snapshot") != std::string::npos);
+  CHECK(error("hello world, this is not a snapshot at all").find("not a rigidlab snapshot") != std::string::npos);
+  for (size_t n = 0; n < bytes.size(); n += 1 + n / 7) CHECK(error(bytes.substr(0, n)).starts_with("snapshot: "));
+  CHECK(error(bytes + "x").find("truncated or extended") != std::string::npos);
+  std::string flipped = bytes;
+  flipped[bytes.size() / 2] ^= 0x40;
+  CHECK(error(flipped).find("checksum") != std::string::npos);
+  std::string version = bytes;
+  version[18] = 9;
+  CHECK(error(version).find("version 9") != std::string::npos);
+  // Tampered bytes with a valid checksum: every one is refused or gives a world that steps.
+  int refused = 0;
+  for (size_t i = 30; i + 8 < bytes.size(); i += 1 + i / 97) {
+    for (unsigned char bit : {0x01, 0x80}) {
+      std::string t = bytes;
+      t[i] = static_cast<char>(t[i] ^ bit);
+      resign(t);
+      const std::string e = error(t);
+      CHECK((e == "(no error)" || e.starts_with("snapshot: ") || e.starts_with("input: ")));
+      refused += e.starts_with("snapshot: ") ? 1 : 0;
+    }
+  }
+  CHECK(refused > 0);
+}

@@ -1,0 +1,99 @@
+// libFuzzer target: snapshot files (world_snapshot.h). The bytes are either a whole file (first
+// byte even) or mutations of a valid snapshot of a small world with contacts, joints, a sensor,
+// springs and a sleeping body (first byte odd): pairs of (offset, xor mask), after which the
+// checksum is recomputed, so the mutations reach the reader's checks behind it. The result is
+// deserialized, restored into a world and stepped. Only SnapshotError and InputError may come out;
+// nothing may crash or trip a sanitizer.
+#include <fuzzer/FuzzedDataProvider.h>
+
+#include <string>
+
+#include "rigidlab/error.h"
+#include "rigidlab/world.h"
+
+using namespace rigidlab;
+
+namespace {
+
+std::string baseSnapshot() {
+  World w;
+  BodyDef ground;
+  ground.type = BodyType::Static;
+  ground.shape = makeBox(20, 1);
+  ground.position = {0, -0.5};
+  w.createBody(ground);
+  BodyId last;
+  for (int i = 0; i < 3; ++i) {
+    BodyDef box;
+    box.shape = makeBox(1, 1);
+    box.position = {0, 0.5 + i};
+    last = w.createBody(box);
+  }
+  BodyDef ball;
+  ball.shape = makeCircle(0.3);
+  ball.position = {3, 3};
+  const BodyId b = w.createBody(ball);
+  JointDef pin;
+  pin.a = b;
+  pin.anchor_a = {3, 4};
+  w.createJoint(pin);
+  SpringDef s;
+  s.a = last;
+  s.anchor = {0, 6};
+  s.stiffness = 5;
+  s.rest_length = 2;
+  w.addSpring(s);
+  BodyDef sensor;
+  sensor.type = BodyType::Static;
+  sensor.shape = makeBox(2, 2);
+  sensor.sensor = true;
+  sensor.position = {3, 2};
+  w.createBody(sensor);
+  BodyDef asleep;
+  asleep.shape = makeBox(1, 1);
+  asleep.position = {-5, 0.5};
+  asleep.awake = false;
+  w.createBody(asleep);
+  for (int i = 0; i < 20; ++i) w.step(1.0 / 60.0);
+  return serializeSnapshot(w.snapshot());
+}
+
+uint64_t fnv1a(std::string_view bytes) {
+  uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : bytes) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  static const std::string base = baseSnapshot();
+  FuzzedDataProvider in(data, size);
+  std::string bytes;
+  if (in.ConsumeIntegral<uint8_t>() % 2 == 0) {
+    bytes = in.ConsumeRemainingBytesAsString();
+  } else {
+    bytes = base;
+    constexpr size_t kHeader = 18 + 12;
+    while (in.remaining_bytes() >= 3) {
+      const size_t at = kHeader + in.ConsumeIntegralInRange<size_t>(0, bytes.size() - kHeader - 9);
+      bytes[at] = static_cast<char>(bytes[at] ^ in.ConsumeIntegral<uint8_t>());
+    }
+    const uint64_t sum = fnv1a(std::string_view(bytes).substr(kHeader, bytes.size() - kHeader - 8));
+    for (int i = 0; i < 8; ++i) bytes[bytes.size() - 8 + i] = static_cast<char>((sum >> (8 * i)) & 0xff);
+  }
+  try {
+    World w;
+    w.restore(deserializeSnapshot(bytes));
+    for (int i = 0; i < 20; ++i) w.step(1.0 / 60.0);
+    (void)w.contacts();
+    (void)w.impacts();
+    (void)w.snapshot();
+  } catch (const SnapshotError&) {
+  } catch (const InputError&) {
+  }
+  return 0;
+}
