@@ -56,7 +56,9 @@ function OnStep(world, dt)
     w.last = s
     if world.time < walk_time - 1e-9 then
       w.body.velocity = t * speed  -- the drive: the commanded walk, every step
-    elseif not w.stopped then
+    elseif world.time < walk_time + dt - 1e-9 then
+      -- The step at the end of the walk, told by the clock rather than by a Lua variable, so that a
+      -- run resumed from a snapshot (docs/testing.md 'Snapshots') stops alike.
       w.stopped = { time = world.time, s = s }
       w.body.velocity = {0, 0}  -- stop once; from now on only gravity, the slope and friction act
     end

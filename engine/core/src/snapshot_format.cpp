@@ -703,6 +703,13 @@ void io(A& a, WorldImpl& w) {
   // Not previous_contacts: between steps it holds the step before last's, which the next narrow
   // phase swaps out and clears unread (narrow_phase.cpp); only its capacity is reused.
   io(a, w.island);
+  // What kinematic bodies moved with last step: a velocity set since is a jump (integrator.cpp).
+  io(a, w.kinematic_velocity);
+  io(a, w.kinematic_angular_velocity);
+  io(a, w.kinematic_uid);
+  io(a, w.kinematic_jump);
+  io(a, w.kinematic_angular_jump);
+  a(w.kinematic_jumped);
   io(a, w.keep_awake);
   io(a, w.ccd_hit);
   io(a, w.fast_bodies);
@@ -785,6 +792,9 @@ void validate(const WorldImpl& w) {
   for (const auto& o : w.sensor_overlaps)
     for (ShapeId s : o) check(s.index < ns, "a sensor holds a shape out of range");
   check(w.island.size() <= nb, "more islands than body slots");
+  for (const size_t k : {w.kinematic_velocity.size(), w.kinematic_angular_velocity.size(), w.kinematic_uid.size(),
+                         w.kinematic_jump.size(), w.kinematic_angular_jump.size()})
+    check(k <= nb, "more kinematic velocities than body slots");
   for (uint32_t r : w.island) check(r < nb, "an island root out of range");
   for (const BodyPair& p : w.pairs) check(p.a < ns && p.b < ns, "a pair names a shape out of range");
   for (const BodyPair& p : w.pair_cache.pairs)
