@@ -2,6 +2,8 @@
 # docs/game-scripting.md quotes the shipped scenes: every line of its Lua excerpts (but "...") must
 # be a line of the scene its section names (`scripts/scenes/<name>.lua`, first mention), leading
 # and trailing blanks aside, so the worked examples cannot drift from the scenes they show.
+# README.md's sections that name a scene are held to the same rule (its other Lua blocks are
+# complete examples of their own: the first scene, the game-scripting sketch).
 cmake_policy(SET CMP0007 NEW)  # keep empty lines as list elements
 
 # The lines of a file as a list, ';' replaced by '<semicolon>' (a CMake list separator).
@@ -12,7 +14,8 @@ function(read_lines file out)
   set(${out} "${text}" PARENT_SCOPE)
 endfunction()
 
-read_lines(${SOURCE}/docs/game-scripting.md lines)
+function(check_excerpts doc allow_unnamed minimum)
+read_lines(${SOURCE}/${doc} lines)
 set(scene "")
 set(in_code FALSE)
 set(checked 0)
@@ -35,17 +38,24 @@ foreach(line IN LISTS lines)
     string(STRIP "${line}" quoted)
     if(NOT quoted STREQUAL "..." AND NOT quoted STREQUAL "")
       if(scene STREQUAL "")
-        message(FATAL_ERROR "docs/game-scripting.md: an excerpt outside a scene's section: ${quoted}")
+        if(NOT allow_unnamed)
+          message(FATAL_ERROR "${doc}: an excerpt outside a scene's section: ${quoted}")
+        endif()
+      else()
+        list(FIND stripped "${quoted}" at)
+        if(at LESS 0)
+          message(FATAL_ERROR "${doc}: not a line of ${scene}: ${quoted}")
+        endif()
+        math(EXPR checked "${checked} + 1")
       endif()
-      list(FIND stripped "${quoted}" at)
-      if(at LESS 0)
-        message(FATAL_ERROR "docs/game-scripting.md: not a line of ${scene}: ${quoted}")
-      endif()
-      math(EXPR checked "${checked} + 1")
     endif()
   endif()
 endforeach()
-if(checked LESS 30)
-  message(FATAL_ERROR "docs/game-scripting.md: only ${checked} excerpt lines found")
+if(checked LESS minimum)
+  message(FATAL_ERROR "${doc}: only ${checked} excerpt lines found")
 endif()
-message(STATUS "${checked} excerpt lines match their scenes")
+message(STATUS "${doc}: ${checked} excerpt lines match their scenes")
+endfunction()
+
+check_excerpts(docs/game-scripting.md FALSE 30)
+check_excerpts(README.md TRUE 5)
