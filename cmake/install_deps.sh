@@ -21,6 +21,7 @@ packages=(
   gnuplot-nox                         # accuracy-report pictures
   clang libclang-rt-14-dev            # libFuzzer targets and the sanitizer runtime (tests/fuzz)
   libxml2-utils                       # xmllint: the test of rigidlab test checks its JUnit XML is well formed
+  nlohmann-json3-dev                  # the program's JSON reader (engine/app/json_value.cpp)
 )
 sol2_version=3.5.0
 

@@ -2,99 +2,44 @@
 
 #include <cmath>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 
 #include "report.h"
-
-#include <cctype>
-#include <cstdlib>
 
 namespace rigidlab::app {
 namespace {
 
-struct Parser {
-  const std::string& s;
-  size_t i = 0;
-  void ws() {
-    while (i < s.size() && std::isspace(static_cast<unsigned char>(s[i]))) ++i;
-  }
-  bool lit(const char* word) {
-    const std::string w(word);
-    if (s.compare(i, w.size(), w) != 0) return false;
-    i += w.size();
-    return true;
-  }
-  bool str(std::string& out) {
-    if (i >= s.size() || s[i] != '"') return false;
-    for (++i; i < s.size() && s[i] != '"'; ++i) {
-      if (s[i] == '\\' && i + 1 < s.size()) {
-        const char e = s[++i];
-        out += e == 'n' ? '\n' : e == 't' ? '\t' : e == 'r' ? '\r' : e;
-      } else {
-        out += s[i];
-      }
-    }
-    if (i >= s.size()) return false;
-    ++i;
-    return true;
-  }
-  bool value(JsonValue& v) {
-    ws();
-    if (i >= s.size()) return false;
-    const char c = s[i];
-    if (c == '{') {
-      v.type = JsonValue::Type::Object;
-      ++i;
-      ws();
-      if (i < s.size() && s[i] == '}') return ++i, true;
-      for (;;) {
-        ws();
-        std::string key;
-        if (!str(key)) return false;
-        ws();
-        if (i >= s.size() || s[i] != ':') return false;
-        ++i;
-        if (!value(v.object[key])) return false;
-        ws();
-        if (i < s.size() && s[i] == ',') {
-          ++i;
-          continue;
-        }
-        if (i < s.size() && s[i] == '}') return ++i, true;
-        return false;
-      }
-    }
-    if (c == '[') {
-      v.type = JsonValue::Type::Array;
-      ++i;
-      ws();
-      if (i < s.size() && s[i] == ']') return ++i, true;
-      for (;;) {
-        v.array.emplace_back();
-        if (!value(v.array.back())) return false;
-        ws();
-        if (i < s.size() && s[i] == ',') {
-          ++i;
-          continue;
-        }
-        if (i < s.size() && s[i] == ']') return ++i, true;
-        return false;
-      }
-    }
-    if (c == '"') {
+// nlohmann::json (Debian's nlohmann-json3-dev) parses; the bench code reads the small tree below.
+JsonValue convert(const nlohmann::json& j) {
+  JsonValue v;
+  switch (j.type()) {
+    case nlohmann::json::value_t::boolean:
+      v.type = JsonValue::Type::Bool;
+      v.boolean = j.get<bool>();
+      break;
+    case nlohmann::json::value_t::number_integer:
+    case nlohmann::json::value_t::number_unsigned:
+    case nlohmann::json::value_t::number_float:
+      v.type = JsonValue::Type::Number;
+      v.number = j.get<double>();
+      break;
+    case nlohmann::json::value_t::string:
       v.type = JsonValue::Type::String;
-      return str(v.string);
-    }
-    if (lit("true")) return v.type = JsonValue::Type::Bool, v.boolean = true, true;
-    if (lit("false")) return v.type = JsonValue::Type::Bool, v.boolean = false, true;
-    if (lit("null")) return v.type = JsonValue::Type::Null, true;
-    char* end = nullptr;
-    v.number = std::strtod(s.c_str() + i, &end);
-    if (end == s.c_str() + i) return false;
-    v.type = JsonValue::Type::Number;
-    i = static_cast<size_t>(end - s.c_str());
-    return true;
+      v.string = j.get<std::string>();
+      break;
+    case nlohmann::json::value_t::array:
+      v.type = JsonValue::Type::Array;
+      for (const auto& e : j) v.array.push_back(convert(e));
+      break;
+    case nlohmann::json::value_t::object:
+      v.type = JsonValue::Type::Object;
+      for (const auto& [key, e] : j.items()) v.object[key] = convert(e);
+      break;
+    default:  // null (and the binary and discarded kinds, which text never gives)
+      break;
   }
-};
+  return v;
+}
 
 }  // namespace
 
@@ -145,12 +90,9 @@ std::string JsonValue::dump() const {
 }
 
 std::optional<JsonValue> parseJson(const std::string& text) {
-  Parser p{text};
-  JsonValue v;
-  if (!p.value(v)) return std::nullopt;
-  p.ws();
-  if (p.i != text.size()) return std::nullopt;
-  return v;
+  const nlohmann::json j = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (j.is_discarded()) return std::nullopt;
+  return convert(j);
 }
 
 }  // namespace rigidlab::app

@@ -1,6 +1,5 @@
-// A small JSON reader (and writer) for `rigidlab bench --compare`, which reads the peer programs'
-// output lines.
-// Objects, arrays, strings (no \u escapes beyond ASCII), numbers, booleans, null.
+// JSON values for `rigidlab bench`, which reads its scenes' and the peer programs' output lines:
+// parsed by nlohmann::json, held as this small tree, written compactly by dump().
 #pragma once
 
 #include <map>
