@@ -22,6 +22,7 @@ packages=(
   clang libclang-rt-14-dev            # libFuzzer targets and the sanitizer runtime (tests/fuzz)
   libxml2-utils                       # xmllint: the test of rigidlab test checks its JUnit XML is well formed
   nlohmann-json3-dev                  # the program's JSON reader (engine/app/json_value.cpp)
+  g++-aarch64-linux-gnu               # compile-only check that the core builds for aarch64 (tests/portability)
 )
 sol2_version=3.5.0
 

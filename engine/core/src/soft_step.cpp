@@ -526,16 +526,27 @@ template <bool kSoft>
   }
 }
 
-// The passes compiled twice: for AVX2 and for the x86-64 baseline (SSE2), chosen once per process
-// (softStepUseAvx2). The default build stays portable, and both give the same bits (only
+// The passes compiled twice on x86-64: for AVX2 and for the baseline (SSE2), chosen once per
+// process (softStepUseAvx2). The default build stays portable, and both give the same bits (only
 // additions, multiplications, divisions and comparisons; no fused multiply-add), which
-// tests/core/test_soft_step.cpp checks.
+// tests/core/test_soft_step.cpp checks. Other processors (aarch64) compile the baseline only, with
+// their own vector unit for the same generic vector code.
+#if defined(__x86_64__) || defined(__i386__)
+#define RIGIDLAB_SOFT_STEP_AVX2 1
+bool cpuHasAvx2() { return __builtin_cpu_supports("avx2"); }
+#else
+#define RIGIDLAB_SOFT_STEP_AVX2 0
+bool cpuHasAvx2() { return false; }
+#endif
+
+#if RIGIDLAB_SOFT_STEP_AVX2
 template <bool kSoft>
 __attribute__((target("avx2"))) void passAvx2(std::vector<SoftBody>& bodies, std::vector<SoftLanes>& groups, std::vector<SoftTally>& tallies,
                                               std::vector<SoftTotals>& totals, double inv_h, int substep, std::vector<SoftKick>* warm,
                   const Level* levels) {
   passBody<kSoft>(bodies, groups, tallies, totals, inv_h, substep, warm, levels);
 }
+#endif
 
 template <bool kSoft>
 void passBaseline(std::vector<SoftBody>& bodies, std::vector<SoftLanes>& groups, std::vector<SoftTally>& tallies,
@@ -545,18 +556,20 @@ void passBaseline(std::vector<SoftBody>& bodies, std::vector<SoftLanes>& groups,
 }
 
 bool& avx2Selected() {
-  static bool on = __builtin_cpu_supports("avx2");
+  static bool on = cpuHasAvx2();
   return on;
 }
 
 template <bool kSoft>
 void pass(std::vector<SoftBody>& bodies, std::vector<SoftLanes>& groups, std::vector<SoftTally>& tallies, std::vector<SoftTotals>& totals,
           double inv_h, int substep, std::vector<SoftKick>* warm, const Level* levels) {
+#if RIGIDLAB_SOFT_STEP_AVX2
   if (avx2Selected()) {
     passAvx2<kSoft>(bodies, groups, tallies, totals, inv_h, substep, warm, levels);
-  } else {
-    passBaseline<kSoft>(bodies, groups, tallies, totals, inv_h, substep, warm, levels);
+    return;
   }
+#endif
+  passBaseline<kSoft>(bodies, groups, tallies, totals, inv_h, substep, warm, levels);
 }
 
 // Restitution after the sub-steps (Box2D v3's b2ApplyRestitution), for points that pushed and
@@ -669,7 +682,7 @@ void buildGroups(WorldImpl& w) {
 void softStepOnePointPass(bool on) { onePointPass() = on; }
 
 bool softStepUseAvx2(bool on) {
-  const bool can = __builtin_cpu_supports("avx2");
+  const bool can = cpuHasAvx2();
   avx2Selected() = on && can;
   return avx2Selected() == on;
 }
