@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "rigidlab/world_snapshot.h"
+#include "../state_hash.h"
 #include "test_util.h"
 
 using namespace rigidlab;
@@ -15,21 +16,6 @@ using namespace rigidlab::test;
 namespace {
 
 constexpr double kDt = 1.0 / 60.0;
-
-struct Hash {
-  uint64_t h = 1469598103934665603ull;
-  void add(uint64_t v) {
-    for (int i = 0; i < 8; ++i) {
-      h ^= (v >> (8 * i)) & 0xff;
-      h *= 1099511628211ull;
-    }
-  }
-  void add(double x) { add(std::bit_cast<uint64_t>(x)); }
-  void add(const Vec2& v) {
-    add(v.x());
-    add(v.y());
-  }
-};
 
 // Every body's state, every contact's impulses, every joint's state, the sensors' contents and
 // the events: what a later step or a script could see.

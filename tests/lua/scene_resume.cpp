@@ -15,21 +15,12 @@
 
 #include "rigidlab/lua/scene.h"
 #include "rigidlab/world_snapshot.h"
+#include "../state_hash.h"
 
 using namespace rigidlab;
+using rigidlab::test::Hash;
 
 namespace {
-
-struct Hash {
-  uint64_t h = 1469598103934665603ull;
-  void add(uint64_t v) {
-    for (int i = 0; i < 8; ++i) {
-      h ^= (v >> (8 * i)) & 0xff;
-      h *= 1099511628211ull;
-    }
-  }
-  void add(double x) { add(std::bit_cast<uint64_t>(x)); }
-};
 
 uint64_t stateHash(const World& w) {
   Hash h;
