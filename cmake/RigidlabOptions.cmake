@@ -7,6 +7,8 @@
 # the benchmark numbers are what a user of the README build gets. Given per target (it comes after
 # CMAKE_CXX_FLAGS_RELEASE on the command line, so it wins) rather than by rewriting the cache's
 # flags, which would change a parent project's.
+# RIGIDLAB_VERIFY_CACHES (sanitizer and fuzz builds): what the step keeps between steps to save work
+#   (the broad phase's shape views) is checked against a fresh computation every step.
 
 add_library(rigidlab_options INTERFACE)
 target_compile_options(rigidlab_options INTERFACE
@@ -15,4 +17,5 @@ if(RIGIDLAB_SANITIZE)
   target_compile_options(rigidlab_options INTERFACE
     -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
   target_link_options(rigidlab_options INTERFACE -fsanitize=address,undefined)
+  target_compile_definitions(rigidlab_options INTERFACE RIGIDLAB_VERIFY_CACHES)
 endif()

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <string>
 
@@ -143,9 +144,59 @@ std::string overflowMessage(const WorldImpl& w, const PairOverflow& o, size_t bo
 
 void usePairCache(bool on) { pairCacheOn() = on; }
 
+namespace {
+
+// The fields of a shape's view and proxy that only an edit changes (WorldImpl::shapesEdited).
+void gatherShapeView(const WorldImpl& w, size_t i, bool joints, WorldImpl::ShapeView& view, Proxy& p) {
+  p.active = false;
+  if (!w.shape_alive[i]) return;
+  const BodyShape& s = w.shapes[i];
+  const Body& b = w.bodies[s.body.index];
+  p.active = b.enabled;
+  p.is_static = !b.isDynamic();  // static and kinematic bodies do not collide with each other
+  if (!p.active) return;
+  const Shape& shape = s.geometry;
+  view.placed.shape = &shape;
+  view.placed.xf = &b.xf;
+  view.body = s.body.index;
+  view.type = shape.type;
+  view.radius = shape.radius;
+  view.local_center = shape.center;
+  view.extent = shape.extent > 0.0 ? shape.extent : maxExtent(shape);  // maxExtent without the call
+  view.material = s.material;
+  // A body with joints may be kept from colliding with its jointed partners (collide_connected).
+  const bool jointed = joints && s.body.index < w.body_joints.size() && !w.body_joints[s.body.index].empty();
+  view.special = s.sensor || !s.default_filter || jointed;
+}
+
+#ifdef RIGIDLAB_VERIFY_CACHES
+// Sanitizer and fuzz builds: the kept fields must be what a fresh gather gives, or some edit
+// forgot WorldImpl::shapesEdited.
+void verifyShapeViews(const WorldImpl& w, bool joints) {
+  for (size_t i = 0; i < w.shapes.size(); ++i) {
+    WorldImpl::ShapeView v{};
+    Proxy p;
+    gatherShapeView(w, i, joints, v, p);
+    const WorldImpl::ShapeView& k = w.shape_views[i];
+    const Proxy& q = w.proxies[i];
+    bool same = p.active == q.active && p.is_static == q.is_static;
+    if (same && p.active)
+      same = v.placed.shape == k.placed.shape && v.placed.xf == k.placed.xf && v.body == k.body && v.type == k.type &&
+             v.radius == k.radius && v.local_center == k.local_center && v.extent == k.extent &&
+             v.material.restitution == k.material.restitution && v.material.friction == k.material.friction &&
+             v.material.static_friction == k.material.static_friction && v.special == k.special;
+    if (!same) {
+      std::fprintf(stderr, "rigidlab: the broad phase's view of shape %zu is stale: an edit did not call shapesEdited\n", i);
+      std::abort();
+    }
+  }
+}
+#endif
+
+}  // namespace
+
 void findPairs(WorldImpl& w) {
   const size_t n = w.shapes.size();
-  size_t bodies = 0;  // active shapes, in fact: what the cap scales with
   if (n < 2) {
     w.pairs.clear();
     w.pair_cache.valid = false;
@@ -153,66 +204,65 @@ void findPairs(WorldImpl& w) {
   }
   w.proxies.resize(n);
   w.polygon_offset.resize(n);
-  w.shape_views.resize(n);
+  const bool joints = w.joints.size() > w.free_joints.size();  // some joint is alive
+  if (w.shape_views.size() != n) w.shape_views_current.value = false;
+  if (!w.shape_views_current.value) {
+    w.shape_views.resize(n);
+    w.active_shapes = 0;
+    for (size_t i = 0; i < n; ++i) {
+      gatherShapeView(w, i, joints, w.shape_views[i], w.proxies[i]);
+      w.active_shapes += w.proxies[i].active;
+    }
+    w.shape_views_current.value = true;
+  }
+#ifdef RIGIDLAB_VERIFY_CACHES
+  verifyShapeViews(w, joints);
+#endif
+  const size_t bodies = w.active_shapes;  // active shapes, in fact: what the cap scales with
   w.world_vertices.clear();
   w.world_normals.clear();
   // The views point into world_vertices and world_normals as they grow; if either moved (it grew
   // past its capacity: the first steps, new shapes), the pointers are set again below.
   const size_t vertex_capacity = w.world_vertices.capacity(), normal_capacity = w.world_normals.capacity();
-  const bool joints = w.joints.size() > w.free_joints.size();  // some joint is alive
+  // Inflated by half the contact margin each, so pairs within the margin are found.
+  const Vec2 half_margin = Vec2::Constant(0.5 * w.def.contact_margin);
   for (size_t i = 0; i < n; ++i) {
-    if (i + 4 < n) {  // each shape's vertices are a separate allocation: ask for them ahead
-      const Shape& ahead = w.shapes[i + 4].geometry;
+    Proxy& p = w.proxies[i];
+    if (!p.active) continue;
+    WorldImpl::ShapeView& view = w.shape_views[i];
+    const Transform& xf = *view.placed.xf;
+    if (view.type == ShapeType::Circle) {
+      view.center = xf.apply(view.local_center);  // computeAabb's box, from the centre placed once
+      const Vec2 r = Vec2::Constant(view.radius);
+      p.aabb = {view.center - r - half_margin, view.center + r + half_margin};
+      continue;
+    }
+    if (i + 4 < n && w.proxies[i + 4].active && w.shape_views[i + 4].type != ShapeType::Circle) {
+      // each shape's vertices are a separate allocation: ask for them ahead
+      const Shape& ahead = *w.shape_views[i + 4].placed.shape;
       __builtin_prefetch(ahead.vertices.data());
       __builtin_prefetch(ahead.normals.data());
     }
-    Proxy& p = w.proxies[i];
-    const BodyShape& s = w.shapes[i];
-    const Body& b = w.bodies[s.body.index];
-    p.active = w.shape_alive[i] && b.enabled;
-    if (!p.active) continue;
-    ++bodies;
-    p.is_static = !b.isDynamic();  // static and kinematic bodies do not collide with each other
-    const Shape& shape = s.geometry;
-    if (shape.type != ShapeType::Circle) {
-      // Each polygon (and capsule, segment) is placed in the world once per step; the narrow phase
-      // reads it for every pair (manifold.h WorldPolygon), and its box comes from the placed corners.
-      w.polygon_offset[i] = static_cast<uint32_t>(w.world_vertices.size());
-      p.aabb = {Vec2::Constant(std::numeric_limits<double>::infinity()), Vec2::Constant(-std::numeric_limits<double>::infinity())};
-      for (size_t k = 0; k < shape.vertices.size(); ++k) {
-        const Vec2 v = b.xf.apply(shape.vertices[k]);
-        w.world_vertices.push_back(v);
-        w.world_normals.push_back(b.xf.q.apply(shape.normals[k]));
-        p.aabb.lower = p.aabb.lower.cwiseMin(v);
-        p.aabb.upper = p.aabb.upper.cwiseMax(v);
-      }
-      if (shape.radius > 0.0) {  // capsules
-        p.aabb.lower -= Vec2::Constant(shape.radius);
-        p.aabb.upper += Vec2::Constant(shape.radius);
-      }
+    // Each polygon (and capsule, segment) is placed in the world once per step; the narrow phase
+    // reads it for every pair (manifold.h WorldPolygon), and its box comes from the placed corners.
+    const Shape& shape = *view.placed.shape;
+    w.polygon_offset[i] = static_cast<uint32_t>(w.world_vertices.size());
+    p.aabb = {Vec2::Constant(std::numeric_limits<double>::infinity()), Vec2::Constant(-std::numeric_limits<double>::infinity())};
+    for (size_t k = 0; k < shape.vertices.size(); ++k) {
+      const Vec2 v = xf.apply(shape.vertices[k]);
+      w.world_vertices.push_back(v);
+      w.world_normals.push_back(xf.q.apply(shape.normals[k]));
+      p.aabb.lower = p.aabb.lower.cwiseMin(v);
+      p.aabb.upper = p.aabb.upper.cwiseMax(v);
     }
-    WorldImpl::ShapeView& view = w.shape_views[i];
-    view.placed.shape = &shape;
-    view.placed.xf = &b.xf;
-    view.body = s.body.index;
-    view.type = shape.type;
-    view.radius = shape.radius;
-    if (shape.type == ShapeType::Circle) {
-      view.center = b.xf.apply(shape.center);  // computeAabb's box, from the centre placed once
-      p.aabb = {view.center - Vec2::Constant(shape.radius), view.center + Vec2::Constant(shape.radius)};
-    } else {
-      view.placed.poly = {w.world_vertices.data() + w.polygon_offset[i], w.world_normals.data() + w.polygon_offset[i],
-                          static_cast<int>(shape.vertices.size()), shape.extent};
+    if (shape.radius > 0.0) {  // capsules
+      p.aabb.lower -= Vec2::Constant(shape.radius);
+      p.aabb.upper += Vec2::Constant(shape.radius);
     }
-    view.extent = shape.extent > 0.0 ? shape.extent : maxExtent(shape);  // maxExtent without the call
-    view.material = s.material;
-    // A body with joints may be kept from colliding with its jointed partners (collide_connected).
-    const bool jointed = joints && s.body.index < w.body_joints.size() && !w.body_joints[s.body.index].empty();
-    view.special = s.sensor || !s.default_filter || jointed;
-    // Inflated by half the contact margin each, so pairs within the margin are found.
-    const Vec2 half_margin = Vec2::Constant(0.5 * w.def.contact_margin);
     p.aabb.lower -= half_margin;
     p.aabb.upper += half_margin;
+    view.placed.poly = {w.world_vertices.data() + w.polygon_offset[i], w.world_normals.data() + w.polygon_offset[i],
+                        static_cast<int>(shape.vertices.size()), shape.extent};
   }
   if (w.world_vertices.capacity() != vertex_capacity || w.world_normals.capacity() != normal_capacity) {
     for (size_t i = 0; i < n; ++i) {  // the vectors moved: point the views at where they are now

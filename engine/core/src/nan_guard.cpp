@@ -55,6 +55,7 @@ void guardNonFinite(WorldImpl& w, const char* stage) {
     w.incidents.push_back({b.uid, b.name, w.step_count + 1, w.clock.t, cause(w, i, stage)});
     putBack(w, i);
     b.type = BodyType::Static;
+    w.shapesEdited();
     ++w.static_version;
     b.inv_mass = 0.0;
     b.inv_inertia = 0.0;

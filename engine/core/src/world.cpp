@@ -36,6 +36,7 @@ void undoStep(WorldImpl& w, size_t incidents_before) {
       Body& b = w.bodies[i];
       if (!w.alive[i] || b.uid != w.incidents[k].uid || !b.frozen) continue;
       b.type = BodyType::Dynamic;
+      w.shapesEdited();
       b.frozen = false;
       b.inv_mass = 1.0 / b.mass;
       b.inv_inertia = 1.0 / b.inertia;

@@ -132,6 +132,7 @@ BodyId World::createBody(const BodyDef& def) {
   }
   const BodyId id = w.bodies[index].id;
   w.body_joints.resize(w.bodies.size());
+  w.shapesEdited();  // the views point at the bodies, which may have moved
   w.created_asleep_before.resize(w.bodies.size());
   w.created_asleep_before[index] = w.bodies[index].awake ? 0 : w.step_count + 1;
   if (def.shape) {
@@ -174,6 +175,7 @@ void World::destroyBody(BodyId id) {
   }
   Body& b = w.bodies[id.index];
   for (ShapeId s : b.shapes) w.releaseShape(s.index);
+  w.shapesEdited();
   const BodyId old = b.id;
   b = Body{};
   b.id = old;  // keeps the generation, so the next body in this slot gets a new one
@@ -259,6 +261,7 @@ void World::setType(BodyId id, BodyType type) {
   w.wakeIsland(id.index);
   const bool became_kinematic = type == BodyType::Kinematic && !b.isKinematic();
   b.type = type;
+  w.shapesEdited();
   if (became_kinematic) w.recordKinematicVelocity(id.index);
   ++w.static_version;
   if (type == BodyType::Dynamic) b.frozen = false;
@@ -298,6 +301,7 @@ void World::setMaterial(BodyId id, const Material& m) {
   const Body& b = impl_->get(id);
   const Material checked = WorldImpl::validatedMaterial(m.restitution, m.friction, m.static_friction);
   for (ShapeId s : b.shapes) impl_->shapes[s.index].material = checked;
+  impl_->shapesEdited();
 }
 
 void World::setName(BodyId id, std::string name) {
@@ -350,6 +354,7 @@ void World::setEnabled(BodyId id, bool on) {
   ++w.layout_version;
   ++w.static_version;
   b.enabled = on;
+  w.shapesEdited();
   b.awake = on;  // a disabled body is never awake (WorldImpl::isActive)
   b.sleep_time = 0.0;
   if (!on) {  // what rested on it may now fall; its contacts go

@@ -65,6 +65,18 @@ struct BroadPhaseHolder {
   explicit operator bool() const { return p != nullptr; }
 };
 
+// A flag that a copy of the world does not inherit (World::snapshot copies WorldImpl): what it
+// vouches for points into the original's vectors.
+struct UncopiedFlag {
+  bool value = false;
+  UncopiedFlag() = default;
+  UncopiedFlag(const UncopiedFlag&) {}
+  UncopiedFlag& operator=(const UncopiedFlag&) {
+    value = false;
+    return *this;
+  }
+};
+
 struct WorldImpl {
   WorldDef def;
 
@@ -234,12 +246,13 @@ struct WorldImpl {
   std::vector<char> ccd_hit;      // per slot: stopped by continuous collision detection this step
   std::vector<Vec2> world_vertices, world_normals;  // every polygon placed in the world this step
   std::vector<uint32_t> polygon_offset;             // per shape slot: where its polygon starts in them
-  // Per shape slot, written by the broad phase each step: what the narrow phase reads per pair.
-  // What the narrow phase reads of a shape for every pair it is in, gathered once per step by the
-  // broad phase, so a pair reads two of these instead of two BodyShapes and their bodies.
+  // Per shape slot, what the narrow phase reads of a shape for every pair it is in, so a pair reads
+  // two of these instead of two BodyShapes and their bodies. Only the placed geometry (centre,
+  // world polygon) changes with a step; the rest is gathered again after an edit (shapesEdited).
   struct ShapeView {
     PlacedShape placed;  // the geometry, its body's transform, the world polygon
-    Vec2 center;         // circles: the centre in the world (manifold.h collideCircleCentres)
+    Vec2 center;         // circles: the centre in the world (manifold.h collideCircleCentres); set each step
+    Vec2 local_center;   // circles: Shape::center
     double radius;       // Shape::radius
     double extent;       // maxExtent of the geometry: bounds the contact's slop
     Material material;
@@ -248,6 +261,11 @@ struct WorldImpl {
     bool special;        // a sensor, a filter other than the default, or a jointed body: the narrow phase looks closer
   };
   std::vector<ShapeView> shape_views;
+  size_t active_shapes = 0;          // shapes of enabled bodies, counted with the views
+  UncopiedFlag shape_views_current;  // the views' edit-only fields and the proxies' flags hold
+  // Every edit that changes what a view or proxy flag copies (a shape added or removed, material,
+  // filter, sensor, a body's type or enabled flag, a joint, a body added) calls this.
+  void shapesEdited() { shape_views_current.value = false; }
   std::vector<BodyPair> pairs;             // shape slots
   PairCache pair_cache;  // broad_phase.cpp
   std::vector<Contact> contacts;           // this step's, sorted by (shape_a, shape_b)

@@ -211,6 +211,7 @@ JointId World::createJoint(const JointDef& in) {
   for (uint32_t slot : {made.a, made.b, made.c, made.d})
     if (slot != kWorldSlot && std::find(w.body_joints[slot].begin(), w.body_joints[slot].end(), index) == w.body_joints[slot].end())
       w.body_joints[slot].push_back(index);
+  w.shapesEdited();  // a jointed body's shapes are looked at closer (collide_connected)
   // A joint between bodies all created asleep in this step, before it runs (a welded wall built at
   // rest), leaves them asleep, as a shape added to such a body does (createShape): the step's
   // islands join them, and they sleep and wake together. Static bodies keep nothing awake. Any
@@ -233,6 +234,7 @@ void WorldImpl::releaseJoint(uint32_t index) {
     std::erase(body_joints[slot], index);
     wakeIsland(slot);  // what the joint held may now move
   }
+  shapesEdited();
   const uint32_t generation = j.generation + 1;
   j = Joint{};
   j.generation = generation;

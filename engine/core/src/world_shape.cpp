@@ -147,6 +147,7 @@ uint32_t WorldImpl::attachShape(uint32_t body, const ShapeDef& def, const char* 
   b.shapes.push_back(shapes[index].id);
   countShape(shapes[index], +1);
   ++layout_version;
+  shapesEdited();
   ++static_version;
   try {
     updateMass(b, field, value);
@@ -163,6 +164,7 @@ void WorldImpl::releaseShape(uint32_t index) {
   if (index < sensor_overlaps.size()) sensor_overlaps[index].clear();
   shape_alive[index] = 0;
   ++layout_version;
+  shapesEdited();
   const ShapeId old = shapes[index].id;
   shapes[index] = BodyShape{};
   shapes[index].id = old;  // the next shape in this slot gets a new generation
@@ -213,6 +215,7 @@ const BodyShape& World::shape(ShapeId id) const { return impl_->get(id); }
 void World::setShapeMaterial(ShapeId id, const Material& m) {
   impl_->requireUnlocked("setShapeMaterial");
   impl_->get(id).material = WorldImpl::validatedMaterial(m.restitution, m.friction, m.static_friction);
+  impl_->shapesEdited();
 }
 
 void World::setShapeFilter(ShapeId id, const Filter& filter) {
@@ -220,6 +223,7 @@ void World::setShapeFilter(ShapeId id, const Filter& filter) {
   BodyShape& s = impl_->get(id);
   s.filter = filter;
   s.default_filter = filter == Filter{};
+  impl_->shapesEdited();
   ++impl_->layout_version;  // the queries' copy of the filter (WorldImpl::tree_shapes)
   impl_->wakeIsland(s.body.index);
 }
@@ -246,6 +250,7 @@ void World::setShapeSensor(ShapeId id, bool sensor) {
   BodyShape& s = impl_->get(id);
   impl_->countShape(s, -1);
   s.sensor = sensor;
+  impl_->shapesEdited();
   ++impl_->layout_version;  // the queries' copy of the flag (WorldImpl::tree_shapes)
   impl_->countShape(s, +1);
   impl_->updateMass(impl_->bodies[s.body.index], "density", s.density);  // the CCD bounds change
