@@ -69,7 +69,7 @@ struct Accel {
   Vec2 a;
   double alpha;
 };
-Accel accelerationOf(const WorldImpl& w, uint32_t i, const Wrench& wr) {
+[[gnu::always_inline]] inline Accel accelerationOf(const WorldImpl& w, uint32_t i, const Wrench& wr) {
   const Body& b = w.bodies[i];
   return {wr.force * b.inv_mass + w.def.gravity * b.gravity_scale, wr.torque * b.inv_inertia};
 }
@@ -126,18 +126,22 @@ void integrateInterval(WorldImpl& w, double t0, double h, const char* only) {
   // integrator, v ← (v + h g) / (1 + h c), would also shrink the velocity gravity gave in this
   // step, before the joints and contacts take it away: a damped body held still would then weigh
   // m g / (1 + h c) on its pin or its floor, and a resting one sink by the contact slop.
-  for (uint32_t i = 0; i < n; ++i) {
-    if (!isMoving(w, i, only)) continue;
-    Body& b = w.bodies[i];
-    if (b.linear_damping > 0.0) b.velocity *= 1.0 / (1.0 + h * b.linear_damping);
-    if (b.angular_damping > 0.0) b.angular_velocity *= 1.0 / (1.0 + h * b.angular_damping);
-  }
   bool any_force = false, any_dependent = false;
   for (const ForceEntry& f : w.forces) {
     if (!selected(f, only)) continue;
     any_force |= isActive(f, t0);
     any_dependent |= isActive(f, t0) && f.force->dependsOnState();
   }
+  // Forces read the damped velocity, so with forces the damping is a pass of its own; without,
+  // each integrator's loop damps the body it is at (one pass over the bodies instead of two).
+  const auto damp = [h](Body& b) {
+    if (b.linear_damping > 0.0) b.velocity *= 1.0 / (1.0 + h * b.linear_damping);
+    if (b.angular_damping > 0.0) b.angular_velocity *= 1.0 / (1.0 + h * b.angular_damping);
+  };
+  const bool damp_in_loop = !any_force;
+  if (any_force)
+    for (uint32_t i = 0; i < n; ++i)
+      if (isMoving(w, i, only)) damp(w.bodies[i]);
   // The states are what forces read (ForceInput); gravity alone needs none, and filling them costs
   // a sine and a cosine per body (a tenth of the step's integration in a pile of boxes).
   if (any_force)
@@ -169,11 +173,13 @@ void integrateInterval(WorldImpl& w, double t0, double h, const char* only) {
       derivative(t0);
       const bool semi = method != Integrator::ExplicitEuler;
       // Damping (and for implicit_euler stiffness) of springs and dampers is linearly implicit
-      // (implicit_solve.cpp); without such forces Δv = h a(t_n, y_n).
-      const bool implicit = implicitVelocityChange(w, t0, h, method == Integrator::ImplicitEuler, only);
+      // (implicit_solve.cpp); without such forces Δv = h a(t_n, y_n), and without any force nothing
+      // to linearise (no pass over the bodies to look).
+      const bool implicit = any_force && implicitVelocityChange(w, t0, h, method == Integrator::ImplicitEuler, only);
       for (uint32_t i = 0; i < n; ++i) {
         if (!isMoving(w, i, only)) continue;
         Body& b = w.bodies[i];
+        if (damp_in_loop) damp(b);
         Vec2 dv;
         double dw;
         if (implicit) {
@@ -205,6 +211,7 @@ void integrateInterval(WorldImpl& w, double t0, double h, const char* only) {
         for (uint32_t i = 0; i < n; ++i) {
           if (!isMoving(w, i, only)) continue;
           Body& b = w.bodies[i];
+          if (damp_in_loop) damp(b);
           const Accel acc = accelerationOf(w, i, w.const_wrenches[i]);
           b.center += h * b.velocity + 0.5 * h * h * acc.a;
           b.angle += h * b.angular_velocity + 0.5 * h * h * acc.alpha;
@@ -288,13 +295,15 @@ void moveKinematicBodies(WorldImpl& w, double dt) {
   // Kinematic bodies move by their velocity alone: exact for a constant velocity. A velocity set
   // between steps is a jump at the start of this one; it is kept (kinematic_jump) for the contact
   // displacement of the bodies the kinematic body carries (position_correction.cpp).
+  w.kinematic_jumped = false;
+  if (w.kinematic_bodies == 0 && !w.kinematic_recorded) return;
+  w.kinematic_recorded = w.kinematic_bodies > 0;
   const size_t n = w.bodies.size();
   w.kinematic_velocity.resize(n, Vec2::Zero());
   w.kinematic_angular_velocity.resize(n, 0.0);
   w.kinematic_uid.resize(n, 0);
   w.kinematic_jump.resize(n, Vec2::Zero());
   w.kinematic_angular_jump.resize(n, 0.0);
-  w.kinematic_jumped = false;
   for (size_t k = 0; k < n; ++k) {
     Body& b = w.bodies[k];
     if (!w.alive[k] || !b.isKinematic() || !b.enabled) {

@@ -852,6 +852,7 @@ WorldSnapshot deserializeSnapshot(std::string_view bytes) {
   io(r, *w);
   if (!r.atEnd()) r.fail("bytes left over after the state");
   validate(*w);
+  w->countKinematicBodies();
   w->broad_phase = w->def.broad_phase == BroadPhaseKind::AllPairs
                        ? std::unique_ptr<BroadPhase>(std::make_unique<AllPairsBroadPhase>())
                        : std::unique_ptr<BroadPhase>(std::make_unique<GridBroadPhase>());

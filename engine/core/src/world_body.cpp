@@ -152,7 +152,10 @@ BodyId World::createBody(const BodyDef& def) {
     body.velocity = velocity;
     body.angular_velocity = body.fixed_rotation && body.isDynamic() ? 0.0 : angular_velocity;
   }
-  if (body.isKinematic()) w.recordKinematicVelocity(index);
+  if (body.isKinematic()) {
+    ++w.kinematic_bodies;
+    w.recordKinematicVelocity(index);
+  }
   return id;
 }
 
@@ -174,6 +177,7 @@ void World::destroyBody(BodyId id) {
       if (w.joints[k].alive) w.releaseJoint(k);
   }
   Body& b = w.bodies[id.index];
+  if (b.isKinematic()) --w.kinematic_bodies;
   for (ShapeId s : b.shapes) w.releaseShape(s.index);
   w.shapesEdited();
   const BodyId old = b.id;
@@ -260,6 +264,8 @@ void World::setType(BodyId id, BodyType type) {
     throw InputError("type", "a body with a segment or chain shape cannot be dynamic: segments have no area (use a capsule or a thin box)");
   w.wakeIsland(id.index);
   const bool became_kinematic = type == BodyType::Kinematic && !b.isKinematic();
+  if (b.isKinematic() && type != BodyType::Kinematic) --w.kinematic_bodies;
+  if (became_kinematic) ++w.kinematic_bodies;
   b.type = type;
   w.shapesEdited();
   if (became_kinematic) w.recordKinematicVelocity(id.index);

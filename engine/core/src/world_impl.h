@@ -187,6 +187,15 @@ struct WorldImpl {
   std::vector<Vec2> kinematic_jump;              // per slot: velocity now minus the previous step's
   std::vector<double> kinematic_angular_jump;
   bool kinematic_jumped = false;                 // some kinematic body's velocity changed this step
+  // Alive kinematic bodies (createBody, setType, destroyBody), and whether moveKinematicBodies
+  // recorded one last step: without either, it has nothing to move or forget and makes no pass.
+  uint32_t kinematic_bodies = 0;
+  bool kinematic_recorded = false;
+  void countKinematicBodies() {
+    kinematic_bodies = 0;
+    for (size_t i = 0; i < bodies.size(); ++i) kinematic_bodies += alive[i] && bodies[i].isKinematic();
+    kinematic_recorded = std::any_of(kinematic_uid.begin(), kinematic_uid.end(), [](uint32_t u) { return u != 0; });
+  }
   // The kinematic body's velocity now counts as the one it moved with (created kinematic with a
   // velocity, or made kinematic): no jump at the next step.
   void recordKinematicVelocity(uint32_t slot) {

@@ -85,6 +85,7 @@ struct Body {
   Transform xf;                  // body origin → world
   Vec2 center = Vec2::Zero();    // world centre of mass [m]
   double angle = 0.0;            // [rad]
+  double sleep_time = 0.0;       // how long it has been below the sleep speeds [s]
   Vec2 velocity = Vec2::Zero();  // centre-of-mass velocity [m/s]
   double angular_velocity = 0.0; // [rad/s]
 
@@ -94,6 +95,9 @@ struct Body {
   // dynamic body without shapes has mass 1 kg and inertia 1 kg·m².
   double inv_mass = 0.0;
   double inv_inertia = 0.0;
+  // BodyDef. Beside the inverse mass: the integrator reads them with it, body by body (the fields
+  // a step reads of every body are kept within the first three cache lines).
+  double linear_damping = 0.0, angular_damping = 0.0, gravity_scale = 1.0;
   double mass = 0.0;             // kg
   double inertia = 0.0;          // kg·m², about the centre of mass
   Vec2 local_center = Vec2::Zero();  // centre of mass in body coordinates
@@ -104,8 +108,6 @@ struct Body {
   // points move as it turns (continuous collision detection).
   double min_inradius = 0.0, max_extent = 0.0;
 
-  double linear_damping = 0.0, angular_damping = 0.0, gravity_scale = 1.0;  // BodyDef
-  double sleep_time = 0.0;  // how long it has been below the sleep speeds [s]
   std::vector<ShapeId> shapes;  // in the order they were added (World::shape)
   std::string name;
 
