@@ -162,6 +162,9 @@ void gatherShapeView(const WorldImpl& w, size_t i, bool joints, WorldImpl::Shape
   view.type = shape.type;
   view.radius = shape.radius;
   view.local_center = shape.center;
+  view.local_vertices = shape.vertices.data();
+  view.local_normals = shape.normals.data();
+  view.placed.poly = {nullptr, nullptr, static_cast<int>(shape.vertices.size()), shape.extent};
   view.extent = shape.extent > 0.0 ? shape.extent : maxExtent(shape);  // maxExtent without the call
   view.material = s.material;
   // A body with joints may be kept from colliding with its jointed partners (collide_connected).
@@ -183,6 +186,8 @@ void verifyShapeViews(const WorldImpl& w, bool joints) {
     if (same && p.active)
       same = v.placed.shape == k.placed.shape && v.placed.xf == k.placed.xf && v.body == k.body && v.type == k.type &&
              v.radius == k.radius && v.local_center == k.local_center && v.extent == k.extent &&
+             v.local_vertices == k.local_vertices && v.local_normals == k.local_normals &&
+             v.placed.poly.count == k.placed.poly.count && v.placed.poly.extent == k.placed.poly.extent &&
              v.material.restitution == k.material.restitution && v.material.friction == k.material.friction &&
              v.material.static_friction == k.material.static_friction && v.special == k.special;
     if (!same) {
@@ -239,30 +244,29 @@ void findPairs(WorldImpl& w) {
     }
     if (i + 4 < n && w.proxies[i + 4].active && w.shape_views[i + 4].type != ShapeType::Circle) {
       // each shape's vertices are a separate allocation: ask for them ahead
-      const Shape& ahead = *w.shape_views[i + 4].placed.shape;
-      __builtin_prefetch(ahead.vertices.data());
-      __builtin_prefetch(ahead.normals.data());
+      __builtin_prefetch(w.shape_views[i + 4].local_vertices);
+      __builtin_prefetch(w.shape_views[i + 4].local_normals);
     }
     // Each polygon (and capsule, segment) is placed in the world once per step; the narrow phase
     // reads it for every pair (manifold.h WorldPolygon), and its box comes from the placed corners.
-    const Shape& shape = *view.placed.shape;
     w.polygon_offset[i] = static_cast<uint32_t>(w.world_vertices.size());
     p.aabb = {Vec2::Constant(std::numeric_limits<double>::infinity()), Vec2::Constant(-std::numeric_limits<double>::infinity())};
-    for (size_t k = 0; k < shape.vertices.size(); ++k) {
-      const Vec2 v = xf.apply(shape.vertices[k]);
+    const int count = view.placed.poly.count;
+    for (int k = 0; k < count; ++k) {
+      const Vec2 v = xf.apply(view.local_vertices[k]);
       w.world_vertices.push_back(v);
-      w.world_normals.push_back(xf.q.apply(shape.normals[k]));
+      w.world_normals.push_back(xf.q.apply(view.local_normals[k]));
       p.aabb.lower = p.aabb.lower.cwiseMin(v);
       p.aabb.upper = p.aabb.upper.cwiseMax(v);
     }
-    if (shape.radius > 0.0) {  // capsules
-      p.aabb.lower -= Vec2::Constant(shape.radius);
-      p.aabb.upper += Vec2::Constant(shape.radius);
+    if (view.radius > 0.0) {  // capsules
+      p.aabb.lower -= Vec2::Constant(view.radius);
+      p.aabb.upper += Vec2::Constant(view.radius);
     }
     p.aabb.lower -= half_margin;
     p.aabb.upper += half_margin;
-    view.placed.poly = {w.world_vertices.data() + w.polygon_offset[i], w.world_normals.data() + w.polygon_offset[i],
-                        static_cast<int>(shape.vertices.size()), shape.extent};
+    view.placed.poly.vertices = w.world_vertices.data() + w.polygon_offset[i];
+    view.placed.poly.normals = w.world_normals.data() + w.polygon_offset[i];
   }
   if (w.world_vertices.capacity() != vertex_capacity || w.world_normals.capacity() != normal_capacity) {
     for (size_t i = 0; i < n; ++i) {  // the vectors moved: point the views at where they are now

@@ -259,7 +259,9 @@ struct WorldImpl {
   // two of these instead of two BodyShapes and their bodies. Only the placed geometry (centre,
   // world polygon) changes with a step; the rest is gathered again after an edit (shapesEdited).
   struct ShapeView {
-    PlacedShape placed;  // the geometry, its body's transform, the world polygon
+    PlacedShape placed;  // the geometry, its body's transform, the world polygon (its corners set each step)
+    const Vec2* local_vertices;  // polygons: Shape::vertices and normals, so that placing them
+    const Vec2* local_normals;   // reads this view and not the BodyShape too (one cache line fewer)
     Vec2 center;         // circles: the centre in the world (manifold.h collideCircleCentres); set each step
     Vec2 local_center;   // circles: Shape::center
     double radius;       // Shape::radius
