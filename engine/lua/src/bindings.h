@@ -142,17 +142,19 @@ sol::object cachedHandle(lua_State* L, sol::table& cache, uint64_t key, const T&
 }
 
 // cachedHandle pushed onto the stack, with no registry reference made on the way (the event
-// hooks' arguments are built in bulk).
+// hooks' arguments are built in bulk), from the cache at stack index `cache` (absolute).
+template <typename T>
+void pushCachedHandleAt(lua_State* L, int cache, uint64_t key, const T& value) {
+  if (lua_rawgeti(L, cache, static_cast<lua_Integer>(key)) != LUA_TNIL) return;
+  lua_pop(L, 1);
+  pushHandle(L, value);
+  lua_pushvalue(L, -1);
+  lua_rawseti(L, cache, static_cast<lua_Integer>(key));
+}
 template <typename T>
 void pushCachedHandle(lua_State* L, const sol::table& cache, uint64_t key, const T& value) {
   cache.push(L);
-  lua_rawgeti(L, -1, static_cast<lua_Integer>(key));
-  if (lua_type(L, -1) == LUA_TNIL) {
-    lua_pop(L, 1);
-    pushHandle(L, value);
-    lua_pushvalue(L, -1);
-    lua_rawseti(L, -3, static_cast<lua_Integer>(key));
-  }
+  pushCachedHandleAt(L, lua_gettop(L), key, value);
   lua_remove(L, -2);
 }
 

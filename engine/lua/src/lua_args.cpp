@@ -160,14 +160,20 @@ std::optional<Vec2> toVec(lua_State* L, const sol::object& value) {
   return result;
 }
 
-void pushVec(lua_State* L, const Vec2& v) {
+void pushVec(lua_State* L, const Vec2& v, int metatable) {
   lua_createtable(L, 0, 2);
   lua_pushnumber(L, v.x());
   lua_setfield(L, -2, "x");
   lua_pushnumber(L, v.y());
   lua_setfield(L, -2, "y");
-  lua_rawgeti(L, LUA_REGISTRYINDEX, hostOf(L).vec2_metatable_ref);
+  lua_pushvalue(L, metatable);
   lua_setmetatable(L, -2);
+}
+
+void pushVec(lua_State* L, const Vec2& v) {
+  lua_rawgeti(L, LUA_REGISTRYINDEX, hostOf(L).vec2_metatable_ref);
+  pushVec(L, v, lua_gettop(L));
+  lua_remove(L, -2);
 }
 
 sol::object makeVec(lua_State* L, const Vec2& v) {

@@ -76,6 +76,8 @@ std::string stringArg(lua_State* L, int index, std::string_view function, std::s
 std::optional<Vec2> toVec(lua_State* L, const sol::object& value);
 // Pushes a new vec2 table.
 void pushVec(lua_State* L, const Vec2& v);
+// The same with the vec2 metatable at stack index `metatable` (absolute): for vectors in bulk.
+void pushVec(lua_State* L, const Vec2& v, int metatable);
 sol::object makeVec(lua_State* L, const Vec2& v);
 
 // Checks of one value, shared by options (`subject` is the option's name: "add_box: width must be

@@ -34,37 +34,86 @@ const char* contactEventKind(World::ContactEvent::Kind kind) {
   return "?";
 }
 
+namespace {
+
+// The names of a contact table, pushed once per pusher (ContactPusher::key): a key pushed from the
+// stack and set with rawset skips the lookup of its C string that lua_setfield makes.
+constexpr const char* kKeys[] = {"a", "b", "shape_a", "shape_b", "point", "normal", "approach_speed",
+                                 "normal_impulse", "tangent_impulse", "kind", "x", "y"};
+enum Key { A, B, ShapeA, ShapeB, Point, Normal, ApproachSpeed, NormalImpulse, TangentImpulse, Kind, X, Y, KeyCount };
+constexpr int kSlots = 3 + KeyCount;  // the two caches, the metatable, the keys
+
+}  // namespace
+
+ContactPusher::ContactPusher(lua_State* L, Scene::Impl& scene) : L_(L), scene_(scene) {
+  luaL_checkstack(L, kSlots + 8, "contacts");
+  scene.handles.push(L);
+  base_ = lua_gettop(L);
+  scene.shape_handles.push(L);
+  lua_rawgeti(L, LUA_REGISTRYINDEX, hostOf(L).vec2_metatable_ref);
+  for (const char* k : kKeys) lua_pushstring(L, k);
+}
+
+void ContactPusher::done() {
+  for (int k = 0; k < kSlots; ++k) lua_remove(L_, base_);
+}
+
 void pushContact(lua_State* L, Scene::Impl& scene, const ContactView& c, const char* kind) {
+  ContactPusher pusher(L, scene);
+  pusher.push(c, kind);
+  pusher.done();
+}
+
+void ContactPusher::push(const ContactView& c, const char* kind) {
+  lua_State* L = L_;
+  Scene::Impl& scene = scene_;
   const World& w = *scene.world;
-  lua_createtable(L, 0, kind ? 10 : 9);
-  const auto body = [&](const char* name, BodyId id) {
-    if (w.isValid(id)) {
-      pushBodyHandle(L, scene, id);
-      lua_setfield(L, -2, name);
-    }
+  const int metatable = base_ + 2;
+  const auto key = [&](int k) { lua_pushvalue(L, base_ + 3 + k); };
+  const auto vec = [&](int k, const Vec2& v) {
+    key(k);
+    lua_createtable(L, 0, 2);
+    key(X);
+    lua_pushnumber(L, v.x());
+    lua_rawset(L, -3);
+    key(Y);
+    lua_pushnumber(L, v.y());
+    lua_rawset(L, -3);
+    lua_pushvalue(L, metatable);
+    lua_setmetatable(L, -2);
+    lua_rawset(L, -3);
   };
-  const auto shape = [&](const char* name, ShapeId id) {
-    pushShapeHandle(L, scene, id);
-    lua_setfield(L, -2, name);
+  const auto body = [&](int k, BodyId id) {
+    if (!w.isValid(id)) return;
+    const uint32_t uid = w.body(id).uid;
+    key(k);
+    pushCachedHandleAt(L, base_, uid, LuaBody{&scene, id, uid});
+    lua_rawset(L, -3);
   };
-  const auto number = [&](const char* name, double x) {
+  const auto shape = [&](int k, ShapeId id) {
+    key(k);
+    pushCachedHandleAt(L, base_ + 1, handleKey(id.index, id.generation), LuaShape{&scene, id});
+    lua_rawset(L, -3);
+  };
+  const auto number = [&](int k, double x) {
+    key(k);
     lua_pushnumber(L, x);
-    lua_setfield(L, -2, name);
+    lua_rawset(L, -3);
   };
-  body("a", c.a);
-  body("b", c.b);
-  shape("shape_a", c.shape_a);
-  shape("shape_b", c.shape_b);
-  pushVec(L, c.point);
-  lua_setfield(L, -2, "point");
-  pushVec(L, c.normal);
-  lua_setfield(L, -2, "normal");
-  number("approach_speed", c.approach_speed);
-  number("normal_impulse", c.normal_impulse);
-  number("tangent_impulse", c.tangent_impulse);
+  lua_createtable(L, 0, kind ? 10 : 9);
+  body(A, c.a);
+  body(B, c.b);
+  shape(ShapeA, c.shape_a);
+  shape(ShapeB, c.shape_b);
+  vec(Point, c.point);
+  vec(Normal, c.normal);
+  number(ApproachSpeed, c.approach_speed);
+  number(NormalImpulse, c.normal_impulse);
+  number(TangentImpulse, c.tangent_impulse);
   if (kind) {
+    key(Kind);
     lua_pushstring(L, kind);
-    lua_setfield(L, -2, "kind");
+    lua_rawset(L, -3);
   }
 }
 
@@ -77,10 +126,13 @@ int bodyContacts(lua_State* L) {
   const World& w = *b->scene->world;
   const std::vector<ContactInfo> contacts = w.contactsOf(id);
   lua_createtable(L, static_cast<int>(contacts.size()), 0);
+  const int list = lua_gettop(L);
+  ContactPusher pusher(L, *b->scene);
   for (size_t i = 0; i < contacts.size(); ++i) {
-    pushContact(L, *b->scene, contactView(w, contacts[i]));
-    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+    pusher.push(contactView(w, contacts[i]));
+    lua_rawseti(L, list, static_cast<lua_Integer>(i + 1));
   }
+  pusher.done();
   return 1;
 }
 
@@ -88,10 +140,13 @@ int contactEvents(lua_State* L) {
   Scene::Impl& scene = selfWorld(L, "contact_events");
   const std::vector<World::ContactEvent>& events = scene.world->contactEvents();
   lua_createtable(L, static_cast<int>(events.size()), 0);
+  const int list = lua_gettop(L);
+  ContactPusher pusher(L, scene);
   for (size_t i = 0; i < events.size(); ++i) {
-    pushContact(L, scene, contactView(events[i]), contactEventKind(events[i].kind));
-    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+    pusher.push(contactView(events[i]), contactEventKind(events[i].kind));
+    lua_rawseti(L, list, static_cast<lua_Integer>(i + 1));
   }
+  pusher.done();
   return 1;
 }
 

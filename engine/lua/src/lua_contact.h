@@ -25,6 +25,21 @@ ContactView contactView(const World& world, const ContactInfo& c);
 // and, if `kind` is given, kind = "begin" | "end" | "hit". A body removed since is nil; a removed
 // shape's handle says removed.
 void pushContact(lua_State* L, Scene::Impl& scene, const ContactView& c, const char* kind = nullptr);
+
+// pushContact for many contacts: what each table needs from the registry (the body and shape
+// handle caches, the vec2 metatable, the field names) is pushed once, when the pusher is made,
+// and removed by done(), which leaves what was pushed after them (docs/performance.md "Events").
+class ContactPusher {
+ public:
+  ContactPusher(lua_State* L, Scene::Impl& scene);
+  void push(const ContactView& c, const char* kind = nullptr);
+  void done();
+
+ private:
+  lua_State* L_;
+  Scene::Impl& scene_;
+  int base_;  // the body handle cache; the shape handle cache and the metatable above it
+};
 const char* contactEventKind(World::ContactEvent::Kind kind);
 
 // body:contacts() and world:contact_events().

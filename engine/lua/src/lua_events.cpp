@@ -169,20 +169,23 @@ void pushEventCalls(Scene::Impl& s, std::vector<EventCall>& calls) {
   using Kind = World::ContactEvent::Kind;
   const std::vector<World::ContactEvent>& contact_events = w.contactEvents();
   lua_createtable(L, contacts ? static_cast<int>(contact_events.size()) : 0, 0);
+  const int args = lua_gettop(L);
   int n = 0;  // arguments in the table
-  const auto keep = [&] { lua_rawseti(L, -2, ++n); return n; };
+  const auto keep = [&] { lua_rawseti(L, args, ++n); return n; };
   if (contacts) {
     // The hook of each kind looked up once, not per event.
     const sol::object* hook[3] = {nullptr, nullptr, nullptr};
     for (int k = 0; k < 3; ++k)
       if (isFunction(s.*eventHooks()[k].slot)) hook[k] = &(s.*eventHooks()[k].slot);
     calls.reserve(contact_events.size());
+    ContactPusher pusher(L, s);
     for (const World::ContactEvent& e : contact_events) {
       const int k = e.kind == Kind::Begin ? 0 : e.kind == Kind::End ? 1 : 2;
       if (!hook[k]) continue;
-      pushContact(L, s, contactView(e));
+      pusher.push(contactView(e));
       calls.push_back({hook[k], eventHooks()[k].name, keep(), 0});
     }
+    pusher.done();
   }
   if (sensors) {
     for (const World::SensorEvent& e : w.sensorEvents()) {

@@ -1,5 +1,6 @@
 // Loading a scene and running its hooks (docs/design/thesis.md §3 and §11: PopulateWorld builds the model).
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <chrono>
 #include <cstdio>
@@ -200,12 +201,28 @@ void deliverEvents(Scene::Impl& s) {
     lua_State* L = host.L();
     pushEventCalls(s, calls);
     const int args = lua_gettop(L);
+    // The world handle and each hook function from the registry once, not per call.
+    s.world_handle.push(L);
+    const int world = lua_gettop(L);
+    std::array<std::pair<const sol::object*, int>, 6> hooks{};
+    for (const EventCall& c : calls)
+      for (auto& [hook, slot] : hooks) {
+        if (hook == c.hook) break;
+        if (hook) continue;
+        hook = c.hook;
+        c.hook->push(L);
+        slot = lua_gettop(L);
+        break;
+      }
     for (const EventCall& c : calls) {
       running = c.name;
       ++host.calls;
       const Window window(host.budget(), spent);
-      c.hook->push(L);
-      s.world_handle.push(L);
+      int slot = 0;
+      for (const auto& [hook, at] : hooks)
+        if (hook == c.hook) slot = at;
+      lua_pushvalue(L, slot);
+      lua_pushvalue(L, world);
       lua_rawgeti(L, args, c.first);
       if (c.second) lua_rawgeti(L, args, c.second);
       lua_call(L, c.second ? 3 : 2, 0);

@@ -19,7 +19,6 @@ extern const char kPreludeSource[];
 namespace rigidlab::lua {
 namespace {
 
-constexpr const char* kHostKey = "rigidlab.host";
 constexpr const char* kLoadedKey = "rigidlab.loaded";
 
 // print(...): tab-separated like Lua's own, to the host's log; at most kPrintBytes of it, with
@@ -358,9 +357,10 @@ int messageHandler(lua_State* L) {
 }
 
 ScriptHost& hostOf(lua_State* L) {
-  lua_getfield(L, LUA_REGISTRYINDEX, kHostKey);
-  auto* host = static_cast<ScriptHost*>(lua_touserdata(L, -1));
-  lua_pop(L, 1);
+  // The state's extra space (LUA_EXTRASPACE, copied into every coroutine the state makes) holds
+  // the host: a pointer read, where the registry lookup it replaced cost a string comparison.
+  ScriptHost* host;
+  std::memcpy(&host, lua_getextraspace(L), sizeof host);
   return *host;
 }
 
@@ -378,8 +378,13 @@ void* ScriptHost::allocate(void* ud, void* ptr, size_t old_size, size_t new_size
   // Lua sees the memory after the header (kBlockHeader); both count against the cap.
   char* block = ptr ? static_cast<char*>(ptr) - kBlockHeader : nullptr;
   const size_t old = ptr ? old_size + kBlockHeader : 0;  // for a new block old_size encodes the object type
+  BlockPool& pool = self->pool_;
+  const auto release = [&](char* b, size_t bytes) {
+    if (BlockPool::holds(bytes)) pool.give(b, bytes);
+    else std::free(b);
+  };
   if (new_size == 0) {
-    std::free(block);
+    if (block) release(block, old);
     self->used_ -= old;
     return nullptr;
   }
@@ -391,8 +396,25 @@ void* ScriptHost::allocate(void* ud, void* ptr, size_t old_size, size_t new_size
     if (self->state_) self->memory_error_at_ = sceneLocation(self->state_);
     return nullptr;
   }
-  char* p = static_cast<char*>(std::realloc(block, size));
-  if (!p) return nullptr;
+  char* p;
+  if (block && (BlockPool::holds(old) ? BlockPool::holds(size) && BlockPool::sameClass(old, size) : !BlockPool::holds(size))) {
+    p = BlockPool::holds(size) ? block : static_cast<char*>(std::realloc(block, size));  // stays where it is
+  } else {
+    p = static_cast<char*>(BlockPool::holds(size) ? pool.take(size) : std::malloc(size));
+    if (!p) {
+      // Lua counts on a block that shrinks never failing: the old one is large enough, and is
+      // given back later as a block of the new size (to the pool, if that size is the pool's:
+      // then, out of memory anyway, the C library never gets it back).
+      if (!block || size > old) return nullptr;
+      self->used_ = self->used_ - old + size;
+      return ptr;
+    }
+    if (block) {
+      std::memcpy(p, block, std::min(old, size));
+      release(block, old);
+    }
+  }
+  if (!p) return nullptr;  // realloc of a large block
   if (!block) {
     const uint64_t serial = ++self->serial_;
     std::memcpy(p, &serial, sizeof serial);
@@ -472,8 +494,9 @@ ScriptHost::ScriptHost(const SceneOptions& options, std::filesystem::path scene_
   lua_State* L = lua_->lua_state();
   state_ = L;
   const auto error = run([&] {
-    lua_pushlightuserdata(L, this);
-    lua_setfield(L, LUA_REGISTRYINDEX, kHostKey);
+    ScriptHost* self = this;
+    static_assert(LUA_EXTRASPACE >= sizeof self, "hostOf keeps the host in the state's extra space");
+    std::memcpy(lua_getextraspace(L), &self, sizeof self);
     lua_newtable(L);
     lua_setfield(L, LUA_REGISTRYINDEX, kLoadedKey);
 

@@ -37,6 +37,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "block_pool.h"
 #include "budget.h"
 #include "caps.h"
 #include "rigidlab/lua/scene.h"
@@ -132,6 +133,7 @@ class ScriptHost {
   size_t used_ = 0;
   lua_State* state_ = nullptr;  // once lua_newstate has returned
   uint64_t serial_ = 0;         // blocks allocated so far (kBlockHeader)
+  BlockPool pool_;              // the small blocks (before lua_: it outlives the state)
   std::string memory_error_at_;  // "<file>:<line>: " of the Lua line whose allocation was refused
   std::vector<std::filesystem::path> required_;
   std::string last_api_error_;
