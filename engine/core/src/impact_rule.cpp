@@ -76,9 +76,12 @@ void chooseLocatedBodies(WorldImpl& w) {
   };
   for (size_t k = 0; k < w.contacts.size() && k < w.contact_keys.size(); ++k) {
     const Contact& c = w.contacts[k];
-    const double scale = std::max(w.bodies[c.a].center.cwiseAbs().maxCoeff(), w.bodies[c.b].center.cwiseAbs().maxCoeff());
-    bool touching = false;
-    for (int p = 0; p < c.count; ++p) touching |= c.points[p].separation <= touchTolerance(scale);
+    double deepest = c.points[0].separation;
+    for (int p = 1; p < c.count; ++p) deepest = std::min(deepest, c.points[p].separation);
+    // The tolerance is at least 1e-9 (impact_search.cpp): a point as deep as that touches whatever
+    // the bodies' scale, which is then not read (a resting pile's contacts all are).
+    const bool touching = deepest <= 1e-9 || deepest <= touchTolerance(std::max(w.bodies[c.a].center.cwiseAbs().maxCoeff(),
+                                                                                 w.bodies[c.b].center.cwiseAbs().maxCoeff()));
     if (!touching || bounced(c)) continue;
     blocked[c.a] = 1;
     blocked[c.b] = 1;
