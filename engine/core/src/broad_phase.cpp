@@ -182,16 +182,23 @@ void verifyShapeViews(const WorldImpl& w, bool joints) {
     gatherShapeView(w, i, joints, v, p);
     const WorldImpl::ShapeView& k = w.shape_views[i];
     const Proxy& q = w.proxies[i];
-    bool same = p.active == q.active && p.is_static == q.is_static;
-    if (same && p.active)
-      same = v.placed.shape == k.placed.shape && v.placed.xf == k.placed.xf && v.body == k.body && v.type == k.type &&
-             v.radius == k.radius && v.local_center == k.local_center && v.extent == k.extent &&
-             v.local_vertices == k.local_vertices && v.local_normals == k.local_normals &&
-             v.placed.poly.count == k.placed.poly.count && v.placed.poly.extent == k.placed.poly.extent &&
-             v.material.restitution == k.material.restitution && v.material.friction == k.material.friction &&
-             v.material.static_friction == k.material.static_friction && v.special == k.special;
-    if (!same) {
-      std::fprintf(stderr, "rigidlab: the broad phase's view of shape %zu is stale: an edit did not call shapesEdited\n", i);
+    const char* stale = p.active != q.active       ? "active"
+                        : !p.active                  ? nullptr  // an inactive proxy's other fields are never read
+                        : p.is_static != q.is_static ? "static"
+                        : v.placed.shape != k.placed.shape || v.placed.xf != k.placed.xf || v.body != k.body ? "body"
+                        : v.type != k.type || v.radius != k.radius || v.local_center != k.local_center ||
+                                v.extent != k.extent || v.local_vertices != k.local_vertices ||
+                                v.local_normals != k.local_normals || v.placed.poly.count != k.placed.poly.count ||
+                                v.placed.poly.extent != k.placed.poly.extent
+                            ? "geometry"
+                        : v.material.restitution != k.material.restitution || v.material.friction != k.material.friction ||
+                                v.material.static_friction != k.material.static_friction
+                            ? "material"
+                        : v.special != k.special ? "special"
+                                                 : nullptr;
+    if (stale) {
+      std::fprintf(stderr, "rigidlab: the broad phase's view of shape %zu is stale (%s): an edit did not call shapesEdited\n",
+                   i, stale);
       std::abort();
     }
   }
