@@ -137,6 +137,8 @@ TEST_CASE("reference problem: bouncing_ball_drag") { checkProblem("bouncing_ball
 TEST_CASE("reference problem: collision_1d") { checkProblem("collision_1d"); }
 TEST_CASE("reference problem: collision_oblique") { checkProblem("collision_oblique"); }
 TEST_CASE("reference problem: collision_friction") { checkProblem("collision_friction"); }
+TEST_CASE("reference problem: collision_gravity") { checkProblem("collision_gravity"); }
+TEST_CASE("reference problem: slope_bounce") { checkProblem("slope_bounce"); }
 TEST_CASE("reference problem: pendulum_revolute") { checkProblem("pendulum_revolute"); }
 
 TEST_CASE("pendulum_revolute: the measured period converges to the exact 4 K(k) / ω0 at first order") {
@@ -167,7 +169,7 @@ TEST_CASE("reference problems: every file is gated above, with stored errors for
   std::set<std::string> gated = {"free_fall", "drag_projectile", "sho", "damped_under", "damped_critical", "damped_over",
                                  "two_body_spring", "kepler", "time_limited_force", "time_limited_naive", "incline",
                                  "disc_slide_roll", "bouncing_ball", "bouncing_ball_drag", "collision_1d", "collision_oblique",
-                                 "collision_friction", "pendulum_revolute"};
+                                 "collision_friction", "collision_gravity", "slope_bounce", "pendulum_revolute"};
   for (const auto& file : problemFiles(problemDirectory())) {
     const std::string name = file.stem().string();
     CAPTURE(name);
