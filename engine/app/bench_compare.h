@@ -13,7 +13,7 @@ namespace rigidlab::app {
 // Box2D 2.4.1 and Chipmunk 7 (DIR/run.sh builds and runs them), after rigidlab's own results.
 int comparePeers(const std::vector<JsonValue>& ours, const std::filesystem::path& peers);
 
-// Box2D v3 through an existing program of the peers' command line (../shared/peers/v3), one
+// Box2D v3 through an existing program of the peers' command line (docs/performance.md), one
 // thread and `threads` > 1, alternated with rigidlab scene by scene for `rounds` rounds; prints
 // each engine's median over the rounds with the spread, the ratios and the quality figures side by
 // side. Scenes the program does not know are reported as such.

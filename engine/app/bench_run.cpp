@@ -1,7 +1,7 @@
 // One benchmark scene timed in its own child process (so that its peak memory is its own): only
 // World::step (and the scene's own edits before it) is timed; the result is the median (and p95)
 // of the per-step times of each repetition, then the median over repetitions, exactly as the peer
-// programs (../shared/peers) compute theirs.
+// programs compute theirs (docs/performance.md, "How to reproduce the figures").
 #include "bench_run.h"
 
 #include <sys/resource.h>

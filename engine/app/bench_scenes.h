@@ -1,5 +1,5 @@
 // Benchmark scenes for `rigidlab bench`. The peer scenes (pyramid, stack, rain, massratio, bullet)
-// are built exactly as ../shared/peers/scenes.h describes them for Box2D 2.4 and Chipmunk 7 (same
+// are built exactly as the peer programs build them for Box2D 2.4 and Chipmunk 7 (docs/performance.md; same
 // sizes, positions, density 1, friction 0.6, gravity (0, −10), dt 1/60, same step counts), and
 // report the same stability metrics, so one script compares the engines. rigidlab's own scenes
 // measure forces (1000 bodies on springs, no contacts, built in and written in Lua) and located

@@ -22,7 +22,7 @@ WorldDef softDef(ContactSolver solver = ContactSolver::SoftStep) {
   return def;
 }
 
-// The bench's pyramid (../shared/peers/scenes.h): n rows of 1 m boxes on a wide ground. Returns
+// The bench's pyramid (engine/app/bench_scenes.cpp): n rows of 1 m boxes on a wide ground. Returns
 // the top box.
 BodyId pyramid(World& w, int n) {
   addBox(w, 2.0 * std::max(50.0, 0.5 * n + 10.0), 2.0, {0.0, -1.0}, true);
