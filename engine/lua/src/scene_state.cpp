@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cctype>
 #include <cstring>
 #include <unordered_map>
 #include <vector>
