@@ -103,9 +103,17 @@ class Encoder {
 
  private:
   // "state.enemies[3].think": the path of keys (their stack slots) from the returned value.
+  // A deep one shows its first and last keys: state[1][1][1][1][1]...[1][1][1][1][1].
   std::string path() const {
+    constexpr size_t kShown = 5;
     std::string p = "state";
-    for (int k : path_) {
+    for (size_t i = 0; i < path_.size(); ++i) {
+      if (path_.size() > 2 * kShown + 1 && i == kShown) {
+        p += "...";
+        i = path_.size() - kShown - 1;
+        continue;
+      }
+      const int k = path_[i];
       if (lua_type(L_, k) == LUA_TSTRING) {
         size_t n = 0;
         const char* s = lua_tolstring(L_, k, &n);
@@ -131,12 +139,14 @@ class Encoder {
     return describe(L_, index);
   }
 
-  [[noreturn]] void refuse(int index, const std::string& why = "") const {
-    throw SceneStateError("value at " + path() + " is " + describeValue(index) + (why.empty() ? "; " + std::string(kAllowed) : why));
+  // "value at <path> is <what>": `what` describes the value at `index` and says what can be saved.
+  [[noreturn]] void refuse(int index) const { refuse(describeValue(index) + "; " + kAllowed); }
+  [[noreturn]] void refuse(const std::string& what) const {
+    throw SceneStateError("value at " + path() + " is " + what);
   }
 
   void checkScene(int index, Scene::Impl* owner) const {
-    if (owner != &scene_) refuse(index, ", a handle of another scene; " + std::string(kAllowed) + " (of this scene)");
+    if (owner != &scene_) refuse(describeValue(index) + " of another scene; " + kAllowed + " (of this scene)");
   }
 
   // A handle: its tag and id written (and its sort key filled, for keys); false if `index` holds
@@ -231,11 +241,11 @@ class Encoder {
     if (lua_getmetatable(L_, t)) {
       lua_pop(L_, 1);
       vec2 = isVec2Table(L_, t);
-      if (!vec2) refuse(t, ", a table with a metatable; only plain tables and vec2 can be saved (a metatable's functions cannot)");
+      if (!vec2) refuse("a table with a metatable; only plain tables and vec2 can be saved (a metatable's functions cannot)");
     }
     if (depth >= kMaxSceneStateDepth)
-      refuse(t, ", nested " + std::to_string(depth) + " tables deep; at most " + std::to_string(kMaxSceneStateDepth) +
-                    " can be saved");
+      refuse("a table nested " + std::to_string(depth) + " tables deep; at most " +
+             std::to_string(kMaxSceneStateDepth) + " levels of tables can be saved");
     luaL_checkstack(L_, 6, "SaveState: the state is nested too deeply");
     const uint64_t number = tables_.size();
     tables_.emplace(id, number);
