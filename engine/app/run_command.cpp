@@ -46,7 +46,8 @@ Runs a scene headless: PopulateWorld, then steps (calling OnStep after each), th
                     unless --force), run PopulateWorld, put the world in the snapshot's state,
                     then continue: --time T runs until t = T (default: the scene's duration),
                     --steps N runs N more steps. The steps after a resume give the same bits as
-                    the uninterrupted run; the scene's Lua variables start as after PopulateWorld
+                    the uninterrupted run; the scene's Lua variables start as after PopulateWorld,
+                    then as its LoadState sets them from what its SaveState saved
   --force           with --load-state: accept a snapshot of another scene file
 
 A run may take at most 10000000 steps (--steps, or --time / the scene's duration divided by

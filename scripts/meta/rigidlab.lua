@@ -584,13 +584,15 @@ function World:step(dt) end
 function World:kinetic_energy() end
 
 ---The whole simulation state now (bodies, shapes, joints, forces, contacts and their warm starts,
----sleep timers, the clock, the settings), to come back to with world:restore. Not the scene's
----Lua variables. Kept until the scene closes; its memory counts against the scene's limit.
+---sleep timers, the clock, the settings), to come back to with world:restore. The scene's Lua
+---variables only as SaveState returns them (called first, if defined). Kept until the scene
+---closes; its memory counts against the scene's limit.
 ---@return rigidlab.Snapshot
 function World:snapshot() end
 
 ---Puts the world back to a snapshot of this scene, bit-exactly: the steps that follow repeat the
----steps that followed the snapshot. Handles of bodies made after it are stale afterwards.
+---steps that followed the snapshot. Handles of bodies made after it are stale afterwards. Then
+---calls LoadState(world, value) if defined, with the value SaveState returned (nil if none).
 ---@param snapshot rigidlab.Snapshot
 function World:restore(snapshot) end
 
@@ -713,6 +715,26 @@ function OnMouse(world, event) end
 ---@param world rigidlab.World
 ---@param name string
 function OnControl(world, name) end
+
+---A value SaveState may return: nil, booleans, numbers (integer or float, kept exactly), strings,
+---plain tables of these (nested, shared, cyclic; vec2 too; keys: booleans, numbers, strings,
+---handles) and body, shape, joint and force handles and the world, saved by id.
+---@alias rigidlab.SavedState nil|boolean|number|string|table|rigidlab.Body|rigidlab.Shape|rigidlab.Joint|rigidlab.ForceHandle|rigidlab.World
+
+---Optional: the scene's own state for a snapshot (world:snapshot(), --save-state, the sandbox's
+---timeline): the Lua variables its hooks read. A function, coroutine or other userdata in it is an
+---error naming its path (state.enemies[3].think). math.random's state cannot be saved: keep a
+---generator of your own in the state instead.
+---@param world rigidlab.World
+---@return rigidlab.SavedState
+function SaveState(world) end
+
+---Optional: after every restore of a snapshot (world:restore, --load-state, the sandbox's rewind),
+---with the value SaveState returned when it was taken (a fresh copy; its handles name the restored
+---bodies, shapes and joints), or nil if the snapshot holds none.
+---@param world rigidlab.World
+---@param state rigidlab.SavedState
+function LoadState(world, state) end
 
 ---A body's exact state at a time, for Exact(t).
 ---@class rigidlab.ExactState

@@ -76,6 +76,17 @@ function OnStep(world, dt)
   end
 end
 
+-- The variables the hooks change, in snapshots (docs/lua-api.md "Snapshots"): a resumed or rewound
+-- run does not click a second time, and `spawned` lists the bodies (handles are saved by id and
+-- name the restored bodies; one made after the snapshot is gone again, and so is its entry).
+function SaveState(world)
+  return { spawned = spawned, cursor = cursor, clicked_later = clicked_later }
+end
+
+function LoadState(world, s)
+  spawned, cursor, clicked_later = s.spawned, s.cursor, s.clicked_later
+end
+
 function OnKey(world, key)
   if key == "r" then clear(world) end
 end

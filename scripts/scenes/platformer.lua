@@ -43,6 +43,24 @@ function OnSensorBegin(world, sensor, visitor)
   world:remove(sensor.body)
 end
 
+-- The variables the hooks change, in snapshots (docs/lua-api.md "Snapshots"): a run resumed from
+-- a file, or rewound in the sandbox, carries on from the same decisions. `player`, `platform` and
+-- `coins` are made by PopulateWorld and never change, so they need not be saved.
+function SaveState(world)
+  return { collected = collected, jumped = jumped, was_under = was_under, went_through = went_through,
+           landed = landed, grounded_steps = grounded_steps, airborne_steps = airborne_steps }
+end
+
+function LoadState(world, s)
+  collected, jumped, was_under, went_through = s.collected, s.jumped, s.was_under, s.went_through
+  landed, grounded_steps, airborne_steps = s.landed, s.grounded_steps, s.airborne_steps
+  -- A coin removed after the snapshot comes back without its user_data (the Lua side forgot it
+  -- with the body): its number again.
+  for i, coin in ipairs(coins) do
+    if not coin.removed then coin.user_data = i end
+  end
+end
+
 function OnStep(world)
   local p, on_ground = player.position, grounded(player)
   if on_ground then grounded_steps = grounded_steps + 1 else airborne_steps = airborne_steps + 1 end

@@ -2,8 +2,8 @@
 // byte even) or mutations of a valid snapshot of a small world with contacts, joints, a sensor,
 // springs and a sleeping body (first byte odd): pairs of (offset, xor mask), after which the
 // checksum is recomputed, so the mutations reach the reader's checks behind it. The result is
-// deserialized, restored into a world and stepped. Only SnapshotError and InputError may come out;
-// nothing may crash or trip a sanitizer.
+// deserialized (its application data written back the same), restored into a world and stepped.
+// Only SnapshotError and InputError may come out; nothing may crash or trip a sanitizer.
 #include <fuzzer/FuzzedDataProvider.h>
 
 #include <string>
@@ -55,7 +55,11 @@ std::string baseSnapshot() {
   asleep.awake = false;
   w.createBody(asleep);
   for (int i = 0; i < 20; ++i) w.step(1.0 / 60.0);
-  return serializeSnapshot(w.snapshot());
+  WorldSnapshot snapshot = w.snapshot();
+  // Application data (format version 2): opaque to the core, any bytes; here a scene's saved
+  // state as the Lua layer writes it (scene_state.cpp), so mutations reach its length too.
+  snapshot.setAppData(std::string("RLSS\x01\x06\x01\0\0\0\0\0\0\0\x05\x01\0\0\0\0\0\0\0k\x02", 25));
+  return serializeSnapshot(snapshot);
 }
 
 uint64_t fnv1a(std::string_view bytes) {
@@ -87,7 +91,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }
   try {
     World w;
-    w.restore(deserializeSnapshot(bytes));
+    const WorldSnapshot read = deserializeSnapshot(bytes);
+    // What was read is written back the same (the application data included).
+    if (deserializeSnapshot(serializeSnapshot(read)).appData() != read.appData()) __builtin_trap();
+    w.restore(read);
     for (int i = 0; i < 20; ++i) w.step(1.0 / 60.0);
     (void)w.contacts();
     (void)w.impacts();

@@ -1,12 +1,14 @@
-// scene_resume SCENE [FRACTION] [--differs REASON]: a run of SCENE resumed from a snapshot file gives the same bits as
+// scene_resume SCENE [FRACTION] [--check] [--differs REASON]: a run of SCENE resumed from a snapshot file gives the same bits as
 // the uninterrupted run (docs/testing.md "Snapshots"). The scene runs its duration in whole steps,
 // writing a snapshot (serializeSnapshot) at FRACTION of them (default 0.5) and hashing the state
 // at the end; then a fresh load of the scene restores the file's state and runs the remaining
 // steps. Exit 0 if both end in the same state (every body's uid, position, angle, velocities,
 // sleep state, every contact's impulses, the clock), else 1 with the first body that differs.
-// With --differs, the scene is a known limit (its hooks read Lua variables that a snapshot does not
-// hold, docs/lua-api.md "Snapshots"): exit 0 if the runs differ, printing REASON, and 1 if they
-// agree, so the list of limits in tests/lua/CMakeLists.txt cannot go stale.
+// The snapshot carries the scene's own Lua state if it defines SaveState/LoadState (docs/lua-api.md
+// "Snapshots"). With --check, the resumed scene's Check must pass too (its Lua variables came
+// back). With --differs, the scene is a known limit (its hooks read Lua variables that it does not
+// save): exit 0 if the runs differ, printing REASON, and 1 if they agree, so the list of limits in
+// tests/lua/CMakeLists.txt cannot go stale.
 #include <bit>
 #include <cmath>
 #include <cstdio>
@@ -69,13 +71,15 @@ std::string firstDifference(const World& a, const World& b) {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: scene_resume SCENE [FRACTION]\n");
+    std::fprintf(stderr, "usage: scene_resume SCENE [FRACTION] [--check] [--differs REASON]\n");
     return 2;
   }
   double fraction = 0.5;
   const char* differs = nullptr;
+  bool check = false;
   for (int i = 2; i < argc; ++i) {
     if (std::strcmp(argv[i], "--differs") == 0 && i + 1 < argc) differs = argv[++i];
+    else if (std::strcmp(argv[i], "--check") == 0) check = true;
     else fraction = std::atof(argv[i]);
   }
   try {
@@ -96,7 +100,8 @@ int main(int argc, char** argv) {
     resumed->restore(snapshot);
     for (long i = at; i < steps; ++i) resumed->step();
     const uint64_t got = stateHash(resumed->world());
-    std::printf("%s: %ld steps, snapshot at step %ld (%zu bytes): %s\n", argv[1], steps, at, bytes.size(),
+    std::printf("%s: %ld steps, snapshot at step %ld (%zu bytes, %zu of them the scene's Lua state): %s\n", argv[1],
+                steps, at, bytes.size(), snapshot.appData().size(),
                 got == expected ? "resumed run has the same bits" : "resumed run DIFFERS");
     if (got != expected) std::printf("  %s\n", firstDifference(whole->world(), resumed->world()).c_str());
     if (differs) {
@@ -105,6 +110,10 @@ int main(int argc, char** argv) {
       return got == expected ? 1 : 0;
     }
     if (got != expected) return 1;
+    if (check) {
+      resumed->runCheck();  // SceneError if it fails
+      std::printf("  Check passes after the resume\n");
+    }
   } catch (const std::exception& e) {
     std::printf("%s: error: %s\n", argv[1], e.what());
     return 1;

@@ -1,9 +1,10 @@
 // The snapshot file format (world_snapshot.h). Binary, little-endian, versioned:
 //
 //   "RIGIDLAB-SNAPSHOT\n"  magic (18 bytes)
-//   u32 version            kVersion
+//   u32 version            kVersion (2); version 1 files are read too
 //   u64 payload length
-//   payload                the label, then the state, field by field (io() below)
+//   payload                the label; since version 2 the application data (u64 length, bytes);
+//                          then the state, field by field (io() below)
 //   u64 checksum           FNV-1a of the payload
 //
 // Doubles are written as their raw 64 bits, so a restored state is the same bits. One io()
@@ -27,7 +28,8 @@ namespace {
 
 constexpr char kMagic[] = "RIGIDLAB-SNAPSHOT\n";
 constexpr size_t kMagicBytes = sizeof kMagic - 1;
-constexpr uint32_t kVersion = 1;
+constexpr uint32_t kVersion = 2;
+constexpr uint32_t kOldestVersion = 1;  // version 1: the same without the application data
 
 uint64_t fnv1a(std::string_view bytes) {
   uint64_t h = 1469598103934665603ull;
@@ -813,6 +815,7 @@ std::string serializeSnapshot(const WorldSnapshot& snapshot) {
   Writer payload;
   payload.out.reserve(4096 + 600 * snapshot.state_->bodies.size() + 300 * snapshot.state_->contacts.size());
   payload(snapshot.label_);
+  payload(snapshot.app_data_);
   io(payload, const_cast<WorldImpl&>(*snapshot.state_));  // a Writer only reads
   Writer file;
   file.out.assign(kMagic, kMagicBytes);
@@ -830,9 +833,9 @@ WorldSnapshot deserializeSnapshot(std::string_view bytes) {
   uint32_t version = 0;
   uint64_t length = 0;
   head(version, "the version");
-  if (version != kVersion)
-    throw SnapshotError("snapshot: version " + std::to_string(version) + ", this program reads version " +
-                        std::to_string(kVersion));
+  if (version < kOldestVersion || version > kVersion)
+    throw SnapshotError("snapshot: version " + std::to_string(version) + ", this program reads versions " +
+                        std::to_string(kOldestVersion) + " to " + std::to_string(kVersion));
   head(length, "the length");
   const size_t start = kMagicBytes + 12;
   if (bytes.size() < start || bytes.size() - start < 8 || length != bytes.size() - start - 8)
@@ -848,6 +851,7 @@ WorldSnapshot deserializeSnapshot(std::string_view bytes) {
   Reader r(body, start);
   WorldSnapshot s;
   r(s.label_, "the label");
+  if (version >= 2) r(s.app_data_, "the application data");
   auto w = std::make_shared<WorldImpl>();
   io(r, *w);
   if (!r.atEnd()) r.fail("bytes left over after the state");

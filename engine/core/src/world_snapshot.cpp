@@ -52,8 +52,9 @@ void cloneForces(WorldImpl& w) {
 size_t WorldSnapshot::memoryBytes() const {
   if (!state_) return 0;
   const WorldImpl& w = *state_;
+  const size_t own = label_.capacity() + app_data_.capacity();
   // The state's own vectors dominate; per-element heap of bodies' and shapes' lists is added.
-  size_t n = sizeof(WorldImpl) + bytesOf(w.bodies) + bytesOf(w.alive) + bytesOf(w.shapes) + bytesOf(w.shape_alive) +
+  size_t n = own + sizeof(WorldImpl) + bytesOf(w.bodies) + bytesOf(w.alive) + bytesOf(w.shapes) + bytesOf(w.shape_alive) +
              bytesOf(w.forces) + bytesOf(w.joints) + bytesOf(w.contacts) + bytesOf(w.previous_contacts) +
              bytesOf(w.contact_keys) + bytesOf(w.proxies) + bytesOf(w.pair_cache.grown) + bytesOf(w.pair_cache.pairs) +
              bytesOf(w.pairs) + bytesOf(w.island) + bytesOf(w.created_asleep_before) + bytesOf(w.sensor_overlaps);

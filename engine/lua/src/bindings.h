@@ -54,6 +54,7 @@ struct Scene::Impl {
 
   // world:snapshot()'s, by the index their handles hold (lua_snapshot.cpp)
   std::vector<WorldSnapshot> snapshots;
+  sol::object save_state, load_state;  // SaveState, LoadState (scene_state.h), or nil
 };
 
 // Handles are full userdata holding these plain structs, with metatables of the host's own

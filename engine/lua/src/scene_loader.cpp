@@ -308,6 +308,8 @@ std::unique_ptr<Scene::Impl> load(std::string_view source, const std::string& na
     for (const EventHook& h : eventHooks()) (*s).*h.slot = hook(*s, h.name.data());
     s->on_mouse = hook(*s, "OnMouse");
     s->on_control = hook(*s, "OnControl");
+    s->save_state = hook(*s, "SaveState");
+    s->load_state = hook(*s, "LoadState");
     s->control_values = initialControlValues(s->settings, options.control_values);
   });
   if (error) throw SceneError(name + ": " + host.errorText(*error, ""));
@@ -361,6 +363,7 @@ Scene::Impl::~Impl() {
   for (const EventHook& h : eventHooks()) this->*h.slot = sol::object();
   pre_solve_functions = sol::table();
   on_mouse = on_control = sol::object();
+  save_state = load_state = sol::object();
   handles = user_data = shape_handles = joint_handles = sol::table();
   world_handle = draw_handle = sol::object();
   draw = nullptr;

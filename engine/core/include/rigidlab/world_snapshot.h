@@ -52,6 +52,11 @@ class WorldSnapshot {
   // file the snapshot came from.
   const std::string& label() const { return label_; }
   void setLabel(std::string label) { label_ = std::move(label); }
+  // Opaque bytes of the application's own state, carried through serialization unread (since
+  // format version 2; empty for a version 1 file). The Lua layer stores a scene's SaveState value
+  // in it (docs/lua-api.md "Snapshots"). World::restore ignores it.
+  const std::string& appData() const { return app_data_; }
+  void setAppData(std::string bytes) { app_data_ = std::move(bytes); }
 
  private:
   friend class World;
@@ -59,13 +64,15 @@ class WorldSnapshot {
   friend WorldSnapshot deserializeSnapshot(std::string_view);
   std::shared_ptr<const WorldImpl> state_;  // immutable once made: copies of a snapshot share it
   std::string label_;
+  std::string app_data_;
 };
 
 // The snapshot as bytes (snapshot_format.cpp): a versioned binary format with every double as its
 // raw bits, a length and a checksum. Forces that cannot be copied are recorded by kind and id.
 std::string serializeSnapshot(const WorldSnapshot& snapshot);
-// Reads serializeSnapshot's bytes; SnapshotError("snapshot: ...") naming what is wrong and where
-// for anything else (a truncated or corrupt file, another version, indices out of range).
+// Reads serializeSnapshot's bytes, of this version (2) or version 1 (no application data);
+// SnapshotError("snapshot: ...") naming what is wrong and where for anything else (a truncated or
+// corrupt file, another version, indices out of range).
 WorldSnapshot deserializeSnapshot(std::string_view bytes);
 
 }  // namespace rigidlab

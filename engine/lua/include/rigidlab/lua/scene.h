@@ -215,7 +215,9 @@ class Scene {
 
   // The world's snapshot labelled "scene: <file>\ndt: <dt as %a>\n" (world_snapshot.h), and a restore that also
   // mends the scene's Lua side (forgets handles of bodies that are gone; docs/lua-api.md
-  // "Snapshots"). The scene's Lua variables are not in a snapshot. restore() throws SceneError.
+  // "Snapshots"). The scene's own Lua state is in a snapshot if the scene defines SaveState(world):
+  // its value is the snapshot's appData, given back to LoadState(world, value) after a restore.
+  // Both throw SceneError (an error in the hooks, a value SaveState cannot save).
   WorldSnapshot snapshot() const;
   void restore(const WorldSnapshot& snapshot);
 
