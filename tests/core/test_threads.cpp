@@ -168,7 +168,7 @@ TEST_CASE("threads: a snapshot neither carries nor restores the setting, and ste
   CHECK(sameBits(stateBits(a), after));
 }
 
-TEST_CASE("threads: the pool runs every index once, in fixed ranges, whatever the thread count") {
+TEST_CASE("threads: the pool runs every index once, whatever the thread count") {
   for (int threads : {1, 2, 3, 5}) {
     CAPTURE(threads);
     TaskPool pool(threads);
@@ -183,7 +183,7 @@ TEST_CASE("threads: the pool runs every index once, in fixed ranges, whatever th
       bool once = true;
       for (int h : hits) once &= h == 1;
       CHECK(once);
-      CHECK(calls.load() <= threads);
+      CHECK(calls.load() <= 4 * threads);  // a few chunks per thread
       // Below the grain the caller does it all in one call.
       calls = 0;
       pool.parallelFor(count, count + 1, [&](size_t, size_t) { ++calls; });
