@@ -1,6 +1,7 @@
 # Every dependency comes from a Debian 12 package (cmake/install_deps.sh installs them); nothing is
 # downloaded at build time. Each is wrapped in an imported target.
 find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+find_package(Threads REQUIRED)  # the world's worker threads (WorldDef::threads)
 
 if(RIGIDLAB_LUA)
   find_package(PkgConfig REQUIRED)

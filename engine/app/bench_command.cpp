@@ -21,7 +21,7 @@ namespace {
 
 constexpr const char* kHelp = R"(usage: rigidlab bench [SCENE...] [--reps R] [--steps N] [--json] [--compare] [--peers DIR]
                       [--v3 PROGRAM] [--v3-threads T] [--solver NAME] [--substeps N] [--iterations N]
-                      [--impacts NAME]
+                      [--impacts NAME] [--threads N]
 
 Times benchmark scenes (all of them without SCENE arguments), each in its own process. Per scene:
 median and p95 ms per step (only World::step is timed), setup time, the per-stage breakdown,
@@ -43,6 +43,8 @@ contacts, calls into Lua, peak memory, and the peers' stability metrics.
   --impacts NAME  located (default: impacts of small free islands located inside the step while
                 at most 128 bodies are awake) or per_step (every impact once per step), so that
                 two runs show what located impacts cost
+  --threads N   threads a step runs on (WorldDef::threads): 0 (default) the machine's cores, 1 the
+                serial path; the results are the same bits whatever N
 
 scenes:
 )";
@@ -50,7 +52,7 @@ scenes:
 }  // namespace
 
 int benchCommand(const std::vector<std::string>& argv) {
-  const Args args("bench", argv, {"reps", "steps", "peers", "v3", "v3-threads", "solver", "substeps", "iterations", "impacts"}, {"json", "compare"});
+  const Args args("bench", argv, {"reps", "steps", "peers", "v3", "v3-threads", "solver", "substeps", "iterations", "impacts", "threads"}, {"json", "compare"});
   if (args.help()) {
     std::fputs(kHelp, stdout);
     for (const BenchScene& s : benchScenes()) std::printf("  %-12s %s\n", s.name.c_str(), s.description.c_str());
@@ -74,6 +76,8 @@ int benchCommand(const std::vector<std::string>& argv) {
   settings.iterations = static_cast<int>(args.integer("iterations", 1).value_or(settings.iterations));
   if (settings.substeps > 64) throw UsageError("bench: --substeps must be at most 64");
   if (settings.iterations > 10000) throw UsageError("bench: --iterations must be at most 10000");
+  settings.threads = static_cast<int>(args.integer("threads", 0).value_or(settings.threads));
+  if (settings.threads > 64) throw UsageError("bench: --threads must be at most 64");
   std::vector<const BenchScene*> selected;
   for (const std::string& name : args.positional()) {
     const auto it = std::find_if(benchScenes().begin(), benchScenes().end(), [&](const BenchScene& s) { return s.name == name; });

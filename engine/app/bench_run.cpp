@@ -129,7 +129,8 @@ std::string runScene(const BenchScene& scene, int reps) {
                   std::to_string(reps) + ", \"sleep\": false, \"settings\": {\"solver\": \"" +
                   std::string(contactSolverName(benchSettings().contact_solver)) + "\", \"substeps\": " +
                   std::to_string(benchSettings().substeps) + ", \"iterations\": " +
-                  std::to_string(benchSettings().iterations) + ", \"impacts\": \"" +
+                  std::to_string(benchSettings().iterations) + ", \"threads\": " +
+                  std::to_string(benchSettings().threads) + ", \"impacts\": \"" +
                   std::string(impactHandlingName(benchSettings().impacts)) + "\"}, \"ms_median\": " + fmt(median(medians)) +
                   ", \"ms_median_best_rep\": " + fmt(*std::min_element(medians.begin(), medians.end())) +
                   ", \"ms_p95\": " + fmt(median(p95s)) + ", \"ms_mean\": " + fmt(median(means)) +

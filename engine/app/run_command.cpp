@@ -33,6 +33,8 @@ Runs a scene headless: PopulateWorld, then steps (calling OnStep after each), th
   --dt H            step size in seconds (overrides the scene's dt)
   --integrator NAME euler | semi_implicit_euler | rk4 (overrides the scene's)
   --iterations K    contact solver iterations (overrides the scene's)
+  --threads N       threads a step runs on: 0 the machine's cores (the default), 1 serial; the
+                    same bits whatever N
   --json            print exactly one JSON document on stdout (logs go to stderr):
                     {"time", "steps", "bodies":[{"id","name","static","position","angle",
                     "velocity","angular_velocity"}], "energy":{"kinetic","potential"}, "check"}
@@ -134,7 +136,7 @@ bool sameFile(const std::string& a, const std::string& b) {
 
 int runCommand(const std::vector<std::string>& argv) {
   const Args args("run", argv,
-                  {"time", "steps", "dt", "integrator", "iterations", "trace", "trace-every", "save-state", "load-state"},
+                  {"time", "steps", "dt", "integrator", "iterations", "threads", "trace", "trace-every", "save-state", "load-state"},
                   {"json", "quiet", "force"});
   if (args.help()) {
     std::fputs(kRunHelp, stdout);
@@ -156,6 +158,8 @@ int runCommand(const std::vector<std::string>& argv) {
     if (!integrator) throw UsageError("run: --integrator must be one of " + integratorNames() + ", got '" + *name + "'");
   }
   const auto iterations = args.integer("iterations", 1);
+  const auto threads = args.integer("threads", 0);
+  if (threads && *threads > 64) throw UsageError("run: --threads must be at most 64");
   const auto trace_every = args.integer("trace-every", 1).value_or(1);
   const bool json = args.flag("json");
 
@@ -198,6 +202,7 @@ int runCommand(const std::vector<std::string>& argv) {
   if (dt) scene->setDt(*dt);
   if (integrator) world.setIntegrator(*integrator);
   if (iterations) world.setIterations(static_cast<int>(std::min(*iterations, 10000L)));
+  if (threads) world.setThreads(static_cast<int>(*threads));
 
   std::string refused;
   std::optional<RunLength> length = runLength(*scene, time, steps, refused);

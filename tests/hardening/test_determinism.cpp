@@ -139,9 +139,11 @@ std::vector<std::string> sceneFiles() {
   return files;
 }
 
-// Fresh load, kSteps steps (OnStep included), hash.
-std::string hashOf(const std::string& relative, int steps = kSteps) {
+// Fresh load, kSteps steps (OnStep included), hash. threads ≥ 0: WorldDef::threads set after
+// loading (the default is the machine's cores).
+std::string hashOf(const std::string& relative, int steps = kSteps, int threads = -1) {
   auto scene = Scene::loadFile(kRoot / relative, quiet());
+  if (threads >= 0) scene->world().setThreads(threads);
   for (int i = 0; i < steps; ++i) scene->step();
   return hex(stateHash(scene->world()));
 }
@@ -245,6 +247,17 @@ TEST_CASE("determinism: every scene matches its golden state hash after 240 step
     const std::string scene = g.scene;
     CAPTURE(scene);
     CHECK(hashOf(g.scene) == g.hash);
+  }
+}
+
+TEST_CASE("determinism: the golden hashes on 1 and 3 threads (WorldDef::threads changes no bit)") {
+  for (const Golden& g : kGolden) {
+    const std::string scene = g.scene;
+    CAPTURE(scene);
+    for (int threads : {1, 3}) {
+      CAPTURE(threads);
+      CHECK(hashOf(g.scene, kSteps, threads) == g.hash);
+    }
   }
 }
 

@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "stages.h"
+#include "task_pool.h"
 #include "world_impl.h"
 
 namespace rigidlab {
@@ -31,7 +32,76 @@ void addKey(std::vector<ContactKey>& keys, const Contact& c) {
 
 }  // namespace
 
+namespace {
+
+// The manifold of a pair of placed shapes: a pure function of the two views, so it may be computed
+// on any thread. The two commonest pairs directly, the others through the table (manifold.h); the
+// kinds from the views, not from the shapes, which are further away in memory.
+inline Manifold manifoldOf(const WorldImpl::ShapeView& va, const WorldImpl::ShapeView& vb, double margin) {
+  return va.type == ShapeType::Circle && vb.type == ShapeType::Circle
+             ? collideCircleCentres(va.center, va.radius, vb.center, vb.radius, margin)
+         : va.type == ShapeType::Polygon && vb.type == ShapeType::Polygon
+             ? collidePolygons(va.placed.poly, vb.placed.poly, margin)
+             : kCollideTable[static_cast<int>(va.type)][static_cast<int>(vb.type)](va.placed, vb.placed, margin);
+}
+
+// Whether a pair is left out before any geometry: two shapes of one body never collide; filters and
+// sensors decide the rest.
+inline bool leftOut(const WorldImpl& w, const BodyPair& pair, const WorldImpl::ShapeView& va, const WorldImpl::ShapeView& vb) {
+  if (va.body == vb.body) return true;
+  if (va.special || vb.special) {
+    const BodyShape &sa = w.shapes[pair.a], &sb = w.shapes[pair.b];
+    if (sa.sensor || sb.sensor || !shouldCollide(sa.filter, sb.filter) || w.jointBlocksCollision(va.body, vb.body)) return true;
+  }
+  return false;
+}
+
+// Both asleep (or one static): nothing moved, so the contact is kept as it was.
+inline bool resting(const WorldImpl& w, uint32_t ia, uint32_t ib) {
+  return !w.isActive(ia) && !w.isActive(ib) && !w.isMovingKinematic(ia) && !w.isMovingKinematic(ib);
+}
+
+// With several threads (WorldDef::threads) the manifolds are computed first, each into its pair's
+// slot, for the pairs that are not left out or resting at the start of the stage; the merge below
+// then runs serially in pair order as with one thread and computes the manifolds of the pairs
+// whose islands an earlier pair of the list woke. Each manifold is the same function of the same
+// views either way, so the contacts are the same bits whatever the thread count.
+constexpr size_t kPairGrain = 256;  // pairs per thread below which the stage stays serial
+
+template <bool kPrecomputed>
+void mergeContacts(WorldImpl& w);
+
+}  // namespace
+
 void narrowPhase(WorldImpl& w) {
+  // Small worlds stay serial and never start the threads.
+  TaskPool* pool = w.pairs.size() >= 2 * kPairGrain ? w.taskPool() : nullptr;
+  if (!pool || w.pairs.size() < kPairGrain * static_cast<size_t>(pool->threads())) {
+    mergeContacts<false>(w);
+    return;
+  }
+  auto& manifolds = w.pair_manifolds;
+  manifolds.resize(w.pairs.size());
+  const double margin = w.def.contact_margin;
+  pool->parallelFor(w.pairs.size(), kPairGrain, [&](size_t begin, size_t end) {
+    for (size_t p = begin; p < end; ++p) {
+      const BodyPair& pair = w.pairs[p];
+      const WorldImpl::ShapeView& va = w.shape_views[pair.a];
+      const WorldImpl::ShapeView& vb = w.shape_views[pair.b];
+      if (leftOut(w, pair, va, vb) || resting(w, va.body, vb.body)) {
+        manifolds[p].count = -1;  // not computed
+        continue;
+      }
+      manifolds[p] = manifoldOf(va, vb, margin);
+    }
+  });
+  mergeContacts<true>(w);
+}
+
+namespace {
+
+template <bool kPrecomputed>
+void mergeContacts(WorldImpl& w) {
   std::swap(w.contacts, w.previous_contacts);
   w.contacts.clear();
   w.contact_keys.clear();
@@ -42,7 +112,8 @@ void narrowPhase(WorldImpl& w) {
   w.contact_events.clear();
   w.event_contacts.clear();
   if (events) w.previous_matched.assign(prev.size(), 0);
-  for (const BodyPair& pair : w.pairs) {
+  for (size_t p = 0; p < w.pairs.size(); ++p) {
+    const BodyPair& pair = w.pairs[p];
     const WorldImpl::ShapeView& va = w.shape_views[pair.a];
     const WorldImpl::ShapeView& vb = w.shape_views[pair.b];
     const uint32_t ia = va.body, ib = vb.body;
@@ -53,15 +124,10 @@ void narrowPhase(WorldImpl& w) {
       for (size_t offset = 0; offset < sizeof(Contact); offset += 64) __builtin_prefetch(ahead + offset);
       __builtin_prefetch(ahead + sizeof(Contact) - 1);
     }
-    // Two shapes of one body never collide; filters and sensors decide the rest.
-    if (ia == ib) continue;
-    if (va.special || vb.special) {
-      const BodyShape &sa = w.shapes[pair.a], &sb = w.shapes[pair.b];
-      if (sa.sensor || sb.sensor || !shouldCollide(sa.filter, sb.filter) || w.jointBlocksCollision(ia, ib)) continue;
-    }
+    if (leftOut(w, pair, va, vb)) continue;
     const Body& a = w.bodies[ia];
     const Body& b = w.bodies[ib];
-    if (!w.isActive(ia) && !w.isActive(ib) && !w.isMovingKinematic(ia) && !w.isMovingKinematic(ib)) {
+    if (resting(w, ia, ib)) {
       // Both asleep (or one static): nothing moved, so the contact is as it was; keep it with its
       // impulses for when the island wakes.
       if (had) {
@@ -71,14 +137,8 @@ void narrowPhase(WorldImpl& w) {
       }
       continue;
     }
-    // The two commonest pairs directly, the others through the table (manifold.h); the kinds from
-    // the views, not from the shapes, which are further away in memory.
-    const double margin = w.def.contact_margin;
-    const Manifold m = va.type == ShapeType::Circle && vb.type == ShapeType::Circle
-                           ? collideCircleCentres(va.center, va.radius, vb.center, vb.radius, margin)
-                       : va.type == ShapeType::Polygon && vb.type == ShapeType::Polygon
-                           ? collidePolygons(va.placed.poly, vb.placed.poly, margin)
-                           : kCollideTable[static_cast<int>(va.type)][static_cast<int>(vb.type)](va.placed, vb.placed, margin);
+    // Precomputed unless an earlier pair woke this one's island (see narrowPhase).
+    const Manifold m = kPrecomputed && w.pair_manifolds[p].count >= 0 ? w.pair_manifolds[p] : manifoldOf(va, vb, w.def.contact_margin);
     if (m.count == 0) continue;
     // An awake body reaching a sleeping one wakes its island.
     if (a.isDynamic() && !a.awake) w.wakeIsland(ia);
@@ -143,4 +203,5 @@ void narrowPhase(WorldImpl& w) {
         contactEnds(w, prev[k]);
 }
 
+}  // namespace
 }  // namespace rigidlab

@@ -56,6 +56,7 @@
 #include "joint_solver.h"
 #include "softness.h"
 #include "stages.h"
+#include "task_pool.h"
 #include "world_impl.h"
 
 namespace rigidlab {
@@ -118,6 +119,7 @@ struct PassContext {
   SoftTally* tallies;            // of this group's lanes
   SoftTotals* totals;            // of this group
   std::vector<SoftKick>* warm;   // relax pass, not the last sub-step: the next warm start
+  bool threaded;                 // other groups of the colour may be solved at the same time
 };
 
 // The warm start of the next sub-step: the velocity change the lane's final impulses cause, added
@@ -318,12 +320,17 @@ static_assert(sizeof(SoftBody) == 9 * sizeof(double), "gather reads a SoftBody a
 // cannot be forwarded and stall). Still bodies, which several lanes may share, keep velocity zero
 // (their impulses change nothing unless they are not finite); kinematic ones keep theirs (an
 // impulse times their zero inverse mass changes nothing either).
-[[gnu::always_inline]] inline void scatter(std::vector<SoftBody>& bodies, const uint32_t index[L], const WideBody& v) {
+[[gnu::always_inline]] inline void scatter(std::vector<SoftBody>& bodies, const uint32_t index[L], const WideBody& v, bool threaded) {
   const V zero = splat(0.0);
   const M still = v.still;
   V r[4];
   transpose(still ? zero : v.vx, still ? zero : v.vy, still ? zero : v.w, v.dx, r[0], r[1], r[2], r[3]);
-  for (int l = 0; l < L; ++l) store(&bodies[index[l]].vx, r[l]);
+  // With threads a still body is not written at all: it already holds these values (zero
+  // velocity, its dx), and another thread may be reading it for a lane of another group of the
+  // colour. With one, the unconditional store is cheaper than a test per lane (rain of 4000: about
+  // 5 % of the pass, measured).
+  for (int l = 0; l < L; ++l)
+    if (!threaded || !still[l]) store(&bodies[index[l]].vx, r[l]);
 }
 
 struct WideAnchor {
@@ -358,19 +365,23 @@ static_assert(sizeof(SoftKick) == 4 * sizeof(double), "the kicks are read and wr
   return k;
 }
 
-[[gnu::always_inline]] inline void scatterKick(std::vector<SoftKick>& kicks, const uint32_t index[L], const WideKick& k) {
+// Still bodies' lanes are not written: their warm start is never applied (see warmStartWide), and
+// several groups of a colour, on different threads, may share one.
+[[gnu::always_inline]] inline void scatterKick(std::vector<SoftKick>& kicks, const uint32_t index[L], const WideKick& k, M still,
+                                               bool threaded) {
   V r[4];
   transpose(k.vx, k.vy, k.w, splat(0.0), r[0], r[1], r[2], r[3]);
-  for (int l = 0; l < L; ++l) store(&kicks[index[l]].vx, r[l]);
+  for (int l = 0; l < L; ++l)
+    if (!threaded || !still[l]) store(&kicks[index[l]].vx, r[l]);
 }
 
 // addWarmStart on the four lanes at once, with the same operations in the same order per lane
 // (point 1 only where there are two points). Movable bodies appear in one lane at most. The
-// immovable ones, which several lanes may share, get whatever the last lane writes: their warm
-// start is never applied (the kick loop runs over the moving bodies only).
+// immovable ones, which several lanes may share, are not written: their warm start is never
+// applied (the kick loop runs over the moving bodies only).
 template <int NP>
 [[gnu::always_inline]] inline void warmStartWide(const WideBody& a, const WideBody& b, const SoftLanes& c, M two, V nx, V ny,
-                                                  const V pn[2], const V pt[2], std::vector<SoftKick>& warm) {
+                                                  const V pn[2], const V pt[2], std::vector<SoftKick>& warm, bool threaded) {
   const V tx = ny, ty = -nx;
   WideKick wa = gatherKick(warm, c.a), wb = gatherKick(warm, c.b);
   for (int i = 0; i < NP; ++i) {
@@ -386,8 +397,8 @@ template <int NP>
       wb = {two ? nb.vx : wb.vx, two ? nb.vy : wb.vy, two ? nb.w : wb.w};
     }
   }
-  scatterKick(warm, c.a, wa);
-  scatterKick(warm, c.b, wb);
+  scatterKick(warm, c.a, wa, a.still, threaded);
+  scatterKick(warm, c.b, wb, b.still, threaded);
 }
 
 // NP: the most points of any lane (SoftLanes::points); groups of one-point contacts (circles) skip
@@ -486,8 +497,8 @@ template <bool kSoft, int NP>
     store(c.pn[i], pn[i]);
     store(c.pt[i], pt[i]);
   }
-  scatter(bodies, c.a, a);
-  scatter(bodies, c.b, b);
+  scatter(bodies, c.a, a, ctx.threaded);
+  scatter(bodies, c.b, b, ctx.threaded);
   // Only real points count (a neutral one's impulses are zero unless the velocities are not finite).
   const M two = M{c.count[0], c.count[1], c.count[2], c.count[3]} == 2;
   M acted = (pn[0] != zero) | (pt[0] != zero);
@@ -495,7 +506,7 @@ template <bool kSoft, int NP>
   // Empty lanes may record anything: the write-back reads real contacts only.
   storeMask(c.acted, loadMask(c.acted) | acted);
   if (!kSoft) {
-    if (ctx.warm) warmStartWide<NP>(a, b, c, two, nx, ny, pn, pt, *ctx.warm);
+    if (ctx.warm) warmStartWide<NP>(a, b, c, two, nx, ny, pn, pt, *ctx.warm, ctx.threaded);
     SoftTotals& t = *ctx.totals;
     for (int i = 0; i < NP; ++i) {  // each sub-step applies its final impulses in all
       store(t.n[i], load(t.n[i]) + pn[i]);
@@ -513,9 +524,9 @@ bool& onePointPass() {
 template <bool kSoft>
 [[gnu::always_inline]] inline void passBody(std::vector<SoftBody>& bodies, std::vector<SoftLanes>& groups, std::vector<SoftTally>& tallies,
                                             std::vector<SoftTotals>& totals, double inv_h, int substep, std::vector<SoftKick>* warm,
-                                            const Level* levels) {
-  for (size_t g = 0; g < groups.size(); ++g) {
-    const PassContext ctx{inv_h, substep, levels, &tallies[g * L], &totals[g], warm};
+                                            const Level* levels, size_t g0, size_t g1, bool threaded) {
+  for (size_t g = g0; g < g1; ++g) {
+    const PassContext ctx{inv_h, substep, levels, &tallies[g * L], &totals[g], warm, threaded};
     if (groups[g].serial) {
       solveGroup<kSoft>(bodies, groups[g], ctx);
     } else if (groups[g].points <= 1 && onePointPass()) {
@@ -543,16 +554,16 @@ bool cpuHasAvx2() { return false; }
 template <bool kSoft>
 __attribute__((target("avx2"))) void passAvx2(std::vector<SoftBody>& bodies, std::vector<SoftLanes>& groups, std::vector<SoftTally>& tallies,
                                               std::vector<SoftTotals>& totals, double inv_h, int substep, std::vector<SoftKick>* warm,
-                  const Level* levels) {
-  passBody<kSoft>(bodies, groups, tallies, totals, inv_h, substep, warm, levels);
+                  const Level* levels, size_t g0, size_t g1, bool threaded) {
+  passBody<kSoft>(bodies, groups, tallies, totals, inv_h, substep, warm, levels, g0, g1, threaded);
 }
 #endif
 
 template <bool kSoft>
 void passBaseline(std::vector<SoftBody>& bodies, std::vector<SoftLanes>& groups, std::vector<SoftTally>& tallies,
                   std::vector<SoftTotals>& totals, double inv_h, int substep, std::vector<SoftKick>* warm,
-                  const Level* levels) {
-  passBody<kSoft>(bodies, groups, tallies, totals, inv_h, substep, warm, levels);
+                  const Level* levels, size_t g0, size_t g1, bool threaded) {
+  passBody<kSoft>(bodies, groups, tallies, totals, inv_h, substep, warm, levels, g0, g1, threaded);
 }
 
 bool& avx2Selected() {
@@ -562,14 +573,15 @@ bool& avx2Selected() {
 
 template <bool kSoft>
 void pass(std::vector<SoftBody>& bodies, std::vector<SoftLanes>& groups, std::vector<SoftTally>& tallies, std::vector<SoftTotals>& totals,
-          double inv_h, int substep, std::vector<SoftKick>* warm, const Level* levels) {
+          double inv_h, int substep, std::vector<SoftKick>* warm, const Level* levels, size_t g0, size_t g1,
+          bool threaded) {
 #if RIGIDLAB_SOFT_STEP_AVX2
   if (avx2Selected()) {
-    passAvx2<kSoft>(bodies, groups, tallies, totals, inv_h, substep, warm, levels);
+    passAvx2<kSoft>(bodies, groups, tallies, totals, inv_h, substep, warm, levels, g0, g1, threaded);
     return;
   }
 #endif
-  passBaseline<kSoft>(bodies, groups, tallies, totals, inv_h, substep, warm, levels);
+  passBaseline<kSoft>(bodies, groups, tallies, totals, inv_h, substep, warm, levels, g0, g1, threaded);
 }
 
 // Restitution after the sub-steps (Box2D v3's b2ApplyRestitution), for points that pushed and
@@ -640,6 +652,9 @@ void buildGroups(WorldImpl& w) {
   }
   w.soft_lanes.resize(source.size() / L);
   for (size_t g = 0; g < w.soft_lanes.size(); ++g) w.soft_lanes[g].serial = static_cast<int>(g * L) >= first[kColors];
+  // Each colour's first group, then the serial groups' first, then the end.
+  w.soft_color_first.resize(kColors + 2);
+  for (int c = 0; c <= kColors + 1; ++c) w.soft_color_first[c] = static_cast<uint32_t>(first[c] / L);
 }
 
 // Asks for the cache lines of the contact `ahead` entries further down the list. The loops over a
@@ -678,6 +693,12 @@ void buildGroups(WorldImpl& w) {
 }
 
 }  // namespace
+
+// Work per thread below which a loop stays in the calling thread (task_pool.h): a hand-off costs
+// a few microseconds, a group's pass about 0.1 µs, a body's kick or move a few nanoseconds.
+constexpr size_t kGroupGrain = 16;
+constexpr size_t kContactGrain = 256;
+constexpr size_t kBodyGrain = 1024;
 
 void softStepOnePointPass(bool on) { onePointPass() = on; }
 
@@ -736,6 +757,15 @@ void softStep(WorldImpl& w) {
                (b.angular_velocity - w0) / substeps, 0.0};
   }
 
+  // Worker threads (WorldDef::threads): nullptr for one, and for a small step, which then never
+  // starts them. Only loops whose iterations write their own slots are split (task_pool.h), so
+  // every thread count gives the same bits.
+  TaskPool* pool = w.soft_solved.size() >= 2 * kContactGrain || list.size() >= 2 * kBodyGrain ? w.taskPool() : nullptr;
+  const auto forEach = [pool](size_t count, size_t grain, auto&& fn) {
+    if (pool) pool->parallelFor(count, grain, fn);
+    else if (count > 0) fn(size_t{0}, count);
+  };
+
   // Constraints, in groups of L lanes.
   buildGroups(w);
   const double hertz = std::min(w.def.contact_hertz, 0.125 * inv_h);
@@ -774,7 +804,9 @@ void softStep(WorldImpl& w) {
       }
   // In the contacts' own order: a Contact is large, and reading them in colour order misses the
   // cache on nearly every one (this loop took 40 % of the soft step's own time that way).
-  for (size_t k = 0; k < w.soft_solved.size(); ++k) {
+  // With several threads, each range of contacts is prepared on its own thread and the warm starts,
+  // sums over each body's contacts, are added afterwards serially in the same order.
+  const auto prepare = [&](size_t k) {
     prefetchContact(w, k, 8);
     prefetchCenters(w, k, 8);
     const size_t g = w.soft_slot[k] / L;
@@ -840,9 +872,25 @@ void softStep(WorldImpl& w) {
         sc.block[l] = k11 * k11 < 1000.0 * (k11 * k22 - sc.k12[l] * sc.k12[l]);
         if (sc.block[l]) sc.inv_det[l] = 1.0 / (k11 * k22 - sc.k12[l] * sc.k12[l]);
       }
-      // The first sub-step's warm start: the impulses carried over from the previous step.
-      addWarmStart(a, b, sc, l, warm[c.a], warm[c.b]);
     }
+  };
+  // The first sub-step's warm start: the impulses carried over from the previous step.
+  const auto warmStart = [&](size_t k) {
+    const uint32_t at = w.soft_slot[k];
+    const SoftLanes& sc = groups[at / L];
+    const int l = static_cast<int>(at % L);
+    addWarmStart(bodies[sc.a[l]], bodies[sc.b[l]], sc, l, warm[sc.a[l]], warm[sc.b[l]]);
+  };
+  if (!pool) {
+    for (size_t k = 0; k < w.soft_solved.size(); ++k) {
+      prepare(k);
+      warmStart(k);
+    }
+  } else {
+    pool->parallelFor(w.soft_solved.size(), kContactGrain, [&](size_t begin, size_t end) {
+      for (size_t k = begin; k < end; ++k) prepare(k);
+    });
+    for (size_t k = 0; k < w.soft_solved.size(); ++k) warmStart(k);
   }
 
   for (SoftLanes& sc : groups) {
@@ -865,18 +913,41 @@ void softStep(WorldImpl& w) {
   };
 
   // Sub-steps.
-  for (int step = 0; step < substeps; ++step) {
-    for (uint32_t i : list) {  // kick and warm start
-      SoftBody& b = bodies[i];
-      b.vx += kick[i].vx + warm[i].vx;
-      b.vy += kick[i].vy + warm[i].vy;
-      b.w += kick[i].w + warm[i].w;
-      warm[i] = {0.0, 0.0, 0.0, 0.0};
+  // A pass: with several threads, colour by colour (the groups of one colour share no moving body,
+  // so they are independent), then the serial groups in the caller; in group order otherwise.
+  const auto& color_first = w.soft_color_first;
+  const auto runPass = [&](auto soft, int step, std::vector<SoftKick>* next) {
+    constexpr bool kSoft = decltype(soft)::value;
+    if (!pool) {
+      pass<kSoft>(bodies, groups, tallies, totals, inv_h, step, next, levels, 0, groups.size(), false);
+      return;
     }
+    const size_t colors = color_first.size() - 2;
+    for (size_t c = 0; c < colors; ++c) {
+      const size_t g0 = color_first[c], g1 = color_first[c + 1];
+      pool->parallelFor(g1 - g0, kGroupGrain, [&](size_t begin, size_t end) {
+        pass<kSoft>(bodies, groups, tallies, totals, inv_h, step, next, levels, g0 + begin, g0 + end, true);
+      });
+    }
+    pass<kSoft>(bodies, groups, tallies, totals, inv_h, step, next, levels, color_first[colors], color_first[colors + 1], false);
+  };
+  for (int step = 0; step < substeps; ++step) {
+    forEach(list.size(), kBodyGrain, [&](size_t begin, size_t end) {
+      for (size_t j = begin; j < end; ++j) {  // kick and warm start
+        const uint32_t i = list[j];
+        SoftBody& b = bodies[i];
+        b.vx += kick[i].vx + warm[i].vx;
+        b.vy += kick[i].vy + warm[i].vy;
+        b.w += kick[i].w + warm[i].w;
+        warm[i] = {0.0, 0.0, 0.0, 0.0};
+      }
+    });
     for (uint32_t k : w.soft_joints) warmStartJoint(w.joints[k], jointBodies(w.joints[k]));
     for (uint32_t k : w.soft_joints) solveJoint(w.joints[k], jointBodies(w.joints[k]), joint_step, true);
-    pass<true>(bodies, groups, tallies, totals, inv_h, step, nullptr, levels);
-    for (uint32_t i : list) {  // move
+    runPass(std::true_type{}, step, nullptr);
+    forEach(list.size(), kBodyGrain, [&](size_t begin, size_t end) {
+     for (size_t j = begin; j < end; ++j) {  // move
+      const uint32_t i = list[j];
       SoftBody& b = bodies[i];
       b.dx += h * b.vx;
       b.dy += h * b.vy;
@@ -886,10 +957,11 @@ void softStep(WorldImpl& w) {
       const double inv = 1.0 / std::sqrt(c * c + s * s);
       b.qc = c * inv;
       b.qs = s * inv;
-    }
+     }
+    });
     std::vector<SoftKick>* next = step + 1 < substeps ? &warm : nullptr;
     for (uint32_t k : w.soft_joints) solveJoint(w.joints[k], jointBodies(w.joints[k]), joint_step, false);  // relax
-    pass<false>(bodies, groups, tallies, totals, inv_h, step, next, levels);
+    runPass(std::false_type{}, step, next);
   }
   for (size_t g = 0; g < groups.size(); ++g)
     for (int l = 0; l < L; ++l)
@@ -899,7 +971,7 @@ void softStep(WorldImpl& w) {
   // Write back: impulses for warm starting and reports; bodies that some impulse acted on take the
   // sub-stepped state, the others keep the integrator's.
   // Counts and bodies from the lanes: the Contact is written, not read.
-  for (size_t k = 0; k < w.soft_solved.size(); ++k) {
+  const auto writeBack = [&](size_t k) {
     prefetchWriteBack(w, k, 8);
     const uint32_t at = w.soft_slot[k];
     const SoftLanes& sc = groups[at / L];
@@ -913,20 +985,39 @@ void softStep(WorldImpl& w) {
       cp.step_normal_impulse = t.n[i][l];
       cp.step_tangent_impulse = t.t[i][l];
     }
-    if (!sc.acted[l]) continue;
+  };
+  const auto markPushed = [&](size_t k) {  // several contacts may mark one body: serially
+    const uint32_t at = w.soft_slot[k];
+    const SoftLanes& sc = groups[at / L];
+    const int l = static_cast<int>(at % L);
+    if (!sc.acted[l]) return;
     if (moved[sc.a[l]]) moved[sc.a[l]] = 2;
     if (moved[sc.b[l]]) moved[sc.b[l]] = 2;
+  };
+  if (!pool) {
+    for (size_t k = 0; k < w.soft_solved.size(); ++k) {
+      writeBack(k);
+      markPushed(k);
+    }
+  } else {
+    pool->parallelFor(w.soft_solved.size(), kContactGrain, [&](size_t begin, size_t end) {
+      for (size_t k = begin; k < end; ++k) writeBack(k);
+    });
+    for (size_t k = 0; k < w.soft_solved.size(); ++k) markPushed(k);
   }
-  for (uint32_t i : list) {
-    if (moved[i] != 2 || !w.bodies[i].isDynamic()) continue;  // kinematic bodies keep the integrator's
-    Body& b = w.bodies[i];
-    const SoftBody& s = bodies[i];
-    b.center += Vec2(s.dx, s.dy);
-    b.angle += angle[i];
-    b.velocity = Vec2(s.vx, s.vy);
-    b.angular_velocity = s.w;
-    WorldImpl::syncTransform(b);
-  }
+  forEach(list.size(), kBodyGrain, [&](size_t begin, size_t end) {
+    for (size_t j = begin; j < end; ++j) {
+      const uint32_t i = list[j];
+      if (moved[i] != 2 || !w.bodies[i].isDynamic()) continue;  // kinematic bodies keep the integrator's
+      Body& b = w.bodies[i];
+      const SoftBody& s = bodies[i];
+      b.center += Vec2(s.dx, s.dy);
+      b.angle += angle[i];
+      b.velocity = Vec2(s.vx, s.vy);
+      b.angular_velocity = s.w;
+      WorldImpl::syncTransform(b);
+    }
+  });
 }
 
 }  // namespace rigidlab

@@ -181,6 +181,7 @@ World::World(const WorldDef& def) : impl_(std::make_unique<WorldImpl>()) {
   setSleeping(def.sleeping);
   setContinuous(def.continuous);
   setImpacts(def.impacts);
+  setThreads(def.threads);
   if (def.impact_island_bodies < 1)
     throw InputError("impact_island_bodies", "impact_island_bodies must be at least 1, got " + std::to_string(def.impact_island_bodies));
   if (def.impact_max_bodies < 0)
@@ -253,6 +254,23 @@ void World::setSleeping(bool on) {
 }
 
 void World::setContinuous(bool on) { impl_->def.continuous = on; }
+void World::setThreads(int threads) {
+  if (threads < 0 || threads > 64)
+    throw InputError("threads", "threads must be between 0 (the machine's cores) and 64, got " + std::to_string(threads));
+  impl_->def.threads = threads;
+}
+
+// The pool is made when a step first asks for more than one thread, and made again when the
+// setting changed; a world on one thread has none.
+TaskPool* WorldImpl::taskPool() {
+  const int want = resolvedThreads(def.threads);
+  if (want <= 1) return nullptr;
+  if (!pool.pool || pool.pool->threads() != want) {
+    pool.pool.reset();
+    pool.pool = std::make_unique<TaskPool>(want);
+  }
+  return pool.pool.get();
+}
 void World::setImpacts(ImpactHandling impacts) {
   if (impactHandlingName(impacts).empty()) throw InputError("impacts", "unknown impact handling");
   impl_->def.impacts = impacts;

@@ -12,6 +12,7 @@
 #include "contact.h"
 #include "impact.h"
 #include "joint.h"
+#include "task_pool.h"
 #include "manifold.h"
 #include "rigidlab/error.h"
 #include "rigidlab/world.h"
@@ -79,6 +80,10 @@ struct UncopiedFlag {
 
 struct WorldImpl {
   WorldDef def;
+  // The worker threads WorldDef::threads asks for (task_pool.h): made by the first step that uses
+  // them, never copied with the world.
+  TaskPoolHolder pool;
+  TaskPool* taskPool();  // world.cpp: the pool for def.threads, or nullptr for one thread
 
   // Bodies by slot (BodyId::index). Destroyed slots are reused, most recent first.
   std::vector<Body> bodies;
@@ -168,6 +173,7 @@ struct WorldImpl {
   std::vector<uint32_t> soft_slot;        // per soft contact: its lane (group · L + lane)
   std::vector<uint32_t> soft_colors_used; // per slot: colours of the contacts that move the body
   std::vector<uint8_t> soft_color;        // per soft contact
+  std::vector<uint32_t> soft_color_first; // per colour, then the serial groups, then the end: first group
   std::vector<SoftKick> soft_kick;        // per slot: velocity the step's forces add per sub-step
   std::vector<SoftKick> soft_warm;        // per slot: the next sub-step's warm start
   std::vector<double> soft_angle;         // per slot: angle minus the angle at detection
@@ -278,6 +284,7 @@ struct WorldImpl {
   // filter, sensor, a body's type or enabled flag, a joint, a body added) calls this.
   void shapesEdited() { shape_views_current.value = false; }
   std::vector<BodyPair> pairs;             // shape slots
+  std::vector<Manifold> pair_manifolds;    // per pair, with several threads (narrow_phase.cpp); count −1: not computed
   PairCache pair_cache;  // broad_phase.cpp
   std::vector<Contact> contacts;           // this step's, sorted by (shape_a, shape_b)
   std::vector<ContactKey> contact_keys;    // the same contacts' bodies (contact.h)

@@ -105,6 +105,8 @@ void World::restore(const WorldSnapshot& snapshot) {
   cloneForces(*next);
   next->pre_solve = w.pre_solve;
   next->locked = false;
+  next->def.threads = w.def.threads;  // not simulation state (WorldDef::threads): the world keeps its own
+  next->pool = std::move(w.pool);
   impl_ = std::move(next);
 }
 

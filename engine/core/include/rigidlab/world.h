@@ -157,6 +157,12 @@ struct WorldDef {
   // Restitution applies only to contacts approaching faster than this, so resting contacts do not
   // bounce on the g·dt of every step (0.16 m/s at 60 Hz). [m/s] ≥ 0
   double restitution_threshold = 0.5;
+  // Threads a step runs on, the caller included: 0 takes the machine's cores
+  // (std::thread::hardware_concurrency), 1 runs everything in the caller; 0…64. The narrow phase's
+  // manifolds and the soft step's passes are then split across them (worker threads owned by the
+  // world, started by its first step that has enough work); results are bit-identical whatever the
+  // count (docs/physics.md "Threads"). Not simulation state: snapshots neither save nor restore it.
+  int threads = 0;
   // Joints' rigid constraints in the soft step: the frequency and damping ratio of the soft bias that
   // removes their position error (at most a quarter of the sub-step rate is used). [Hz] > 0, ≥ 0
   double joint_hertz = 120.0;
@@ -278,6 +284,7 @@ class World {
   void setSleeping(bool on);  // off wakes every body
   void setContinuous(bool on);
   void setImpacts(ImpactHandling impacts);
+  void setThreads(int threads);  // WorldDef::threads: 0 (the machine's cores) … 64
 
   // --- bodies
   BodyId createBody(const BodyDef& def);  // InputError names the bad field and value
