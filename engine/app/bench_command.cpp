@@ -43,7 +43,7 @@ contacts, calls into Lua, peak memory, and the peers' stability metrics.
   --impacts NAME  located (default: impacts of small free islands located inside the step while
                 at most 128 bodies are awake) or per_step (every impact once per step), so that
                 two runs show what located impacts cost
-  --threads N   threads a step runs on (WorldDef::threads): 0 (default) the machine's cores, 1 the
+  --threads N   threads a step runs on (WorldDef::threads): 0 the machine's cores, 1 (default) the
                 serial path; the results are the same bits whatever N
 
 scenes:

@@ -33,7 +33,7 @@ Runs a scene headless: PopulateWorld, then steps (calling OnStep after each), th
   --dt H            step size in seconds (overrides the scene's dt)
   --integrator NAME euler | semi_implicit_euler | rk4 (overrides the scene's)
   --iterations K    contact solver iterations (overrides the scene's)
-  --threads N       threads a step runs on: 0 the machine's cores (the default), 1 serial; the
+  --threads N       threads a step runs on: 0 the machine's cores, 1 serial (the default); the
                     same bits whatever N
   --json            print exactly one JSON document on stdout (logs go to stderr):
                     {"time", "steps", "bodies":[{"id","name","static","position","angle",

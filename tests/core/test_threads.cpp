@@ -134,7 +134,7 @@ TEST_CASE("threads: the scenes are big enough to take the threaded paths") {
   CHECK(big.stats().contacts >= 2 * 256);
 }
 
-TEST_CASE("threads: the setting is validated, 0 takes the machine's cores") {
+TEST_CASE("threads: the setting is validated, 1 by default, 0 takes the machine's cores") {
   for (int bad : {-1, 65, 1000}) {
     CAPTURE(bad);
     WorldDef def;
@@ -146,7 +146,7 @@ TEST_CASE("threads: the setting is validated, 0 takes the machine's cores") {
           "threads must be between 0 (the machine's cores) and 64, got " + std::to_string(bad));
   }
   World w;
-  CHECK(w.settings().threads == 0);
+  CHECK(w.settings().threads == 1);  // the default: serial
   w.setThreads(64);
   CHECK(w.settings().threads == 64);
   CHECK(resolvedThreads(3) == 3);
