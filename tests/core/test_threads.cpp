@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <string>
 #include <vector>
 
 #include "task_pool.h"
@@ -115,7 +116,8 @@ TEST_CASE("threads: a pyramid, a rain and a jointed heap give the same bits on 1
       {"jointed heap", 90, joints},
   };
   for (const Scene& s : scenes) {
-    CAPTURE(s.name);
+    const std::string scene = s.name;  // captured as text (a char* would be printed as an address)
+    CAPTURE(scene);
     const std::vector<double> one = run(1, s.steps, s.build);
     for (int threads : {2, 3, 4}) {
       CAPTURE(threads);
