@@ -17,6 +17,7 @@
 //   impulses start from zero, and the velocity it finds is applied as a displacement.
 #pragma once
 
+#include "rigidlab/portable_math.h"
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -172,7 +173,7 @@ inline Vec2 anchorSeparation(const Joint& j, const SoftBody& a, const SoftBody& 
 }
 // θ_B − θ_A − θ_ref now: the angle at prepare plus the relative rotation since.
 inline double relativeAngle(const Joint& j, const SoftBody& a, const SoftBody& b) {
-  return j.delta_angle + std::atan2(a.qc * b.qs - a.qs * b.qc, a.qc * b.qc + a.qs * b.qs);
+  return j.delta_angle + portableAtan2(a.qc * b.qs - a.qs * b.qc, a.qc * b.qc + a.qs * b.qs);
 }
 // In the position pass an error is removed at most this much per iteration, so that a badly broken
 // joint comes back over several steps instead of throwing its bodies (Box2D 2.4's limits).

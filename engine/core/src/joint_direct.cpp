@@ -9,6 +9,7 @@
 // 1 kg links stretched without bound at 10 passes and 1.8 % at 300, measured). The dense solve
 // costs O(m³) for m rows, so it is used for islands of at most kMaxDirectRows rows (a chain of 30
 // pins is 60); larger islands of joints go to the soft step (contact_solver.cpp).
+#include "rigidlab/portable_math.h"
 #include <Eigen/Dense>
 #include <cmath>
 
@@ -175,8 +176,8 @@ void directJointVelocitiesAtPositions(WorldImpl& w) {
     const Body& b = w.bodies[slot];
     const Vec2 d = b.center - centers[i];
     const bool moves = w.isActive(slot);
-    return SoftBody{b.velocity.x(), b.velocity.y(), b.angular_velocity, d.x(), d.y(), std::cos(b.angle - angles[i]),
-                    std::sin(b.angle - angles[i]), moves ? b.inv_mass : 0.0, moves ? b.inv_inertia : 0.0};
+    return SoftBody{b.velocity.x(), b.velocity.y(), b.angular_velocity, d.x(), d.y(), portableCos(b.angle - angles[i]),
+                    portableSin(b.angle - angles[i]), moves ? b.inv_mass : 0.0, moves ? b.inv_inertia : 0.0};
   };
   const auto mass = [&](uint32_t slot, double& im, double& ii) {
     const bool moves = w.isActive(slot);
@@ -222,7 +223,7 @@ int directJointPositions(WorldImpl& w) {
     const Body& b = w.bodies[slot];
     const Vec2 d = b.center - centers[i];
     const bool moves = w.isActive(slot);
-    return SoftBody{0.0, 0.0, 0.0, d.x(), d.y(), std::cos(b.angle - angles[i]), std::sin(b.angle - angles[i]),
+    return SoftBody{0.0, 0.0, 0.0, d.x(), d.y(), portableCos(b.angle - angles[i]), portableSin(b.angle - angles[i]),
                     moves ? b.inv_mass : 0.0, moves ? b.inv_inertia : 0.0};
   };
   const auto mass = [&](uint32_t slot, double& im, double& ii) {

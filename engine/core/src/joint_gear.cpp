@@ -5,6 +5,7 @@
 //   revolute:  J_A = (0, 1), J_C = (0, 1)              (the C terms enter with a minus sign)
 //   prismatic: J_A = (u, r_A × u), J_C = (u, r_C × u)  (r_C from C's centre to its anchor, r_A to A's)
 //   Ċ = J_A · ẋ_A − J_C · ẋ_C + ratio (J_B · ẋ_B − J_D · ẋ_D)
+#include "rigidlab/portable_math.h"
 #include "joint.h"
 #include "joint_rows.h"
 
@@ -30,7 +31,7 @@ GearRow row(const Joint& j, const JointBodies& bodies) {
       r.jw_x[s] = r.jw_g[s] = scale;
       // θ_X − θ_G − θ_ref: at prepare, plus the relative rotation since.
       const double ax0 = s == 0 ? j.angle_a0 : j.angle_b0, ag0 = s == 0 ? j.angle_c0 : j.angle_d0;
-      coordinate = ax0 - ag0 - side.reference + std::atan2(g.qc * x.qs - g.qs * x.qc, g.qc * x.qc + g.qs * x.qs);
+      coordinate = ax0 - ag0 - side.reference + portableAtan2(g.qc * x.qs - g.qs * x.qc, g.qc * x.qc + g.qs * x.qs);
     } else {
       const Vec2 u = turned(g, side.u), rg = turned(g, side.rg), rx = turned(x, side.rx);
       r.jv[s] = scale * u;

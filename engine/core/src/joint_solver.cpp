@@ -1,4 +1,5 @@
 // Joints inside the solvers (joint_solver.h).
+#include "rigidlab/portable_math.h"
 #include "joint_solver.h"
 
 #include <cmath>
@@ -41,7 +42,7 @@ namespace {
 SoftBody positionView(const Body& b, const Vec2& center0, double angle0, double im, double ii) {
   const Vec2 d = b.center - center0;
   const double a = b.angle - angle0;
-  return {0.0, 0.0, 0.0, d.x(), d.y(), std::cos(a), std::sin(a), im, ii};
+  return {0.0, 0.0, 0.0, d.x(), d.y(), portableCos(a), portableSin(a), im, ii};
 }
 
 }  // namespace

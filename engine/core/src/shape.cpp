@@ -1,4 +1,5 @@
 // Shape construction, validation and mass properties. See shape.h for the polygon input policy.
+#include "rigidlab/portable_math.h"
 #include "rigidlab/shape.h"
 
 #include <algorithm>
@@ -134,7 +135,7 @@ Shape makePolygon(std::span<const Vec2> points) {
       throw InputError(vertexField(bad), "polygon is not convex: it turns clockwise at " + vertexField(bad) + " " +
                                              formatVec(points[bad]) + " (split concave shapes into convex pieces)");
     }
-    turning += std::atan2(c, e0.dot(e1));
+    turning += portableAtan2(c, e0.dot(e1));
   }
   if (turning > 2.0 * std::numbers::pi + 1e-6)
     throw InputError("vertices", "polygon outline crosses itself (it winds around " +

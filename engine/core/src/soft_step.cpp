@@ -48,6 +48,7 @@
 // the iteration stops converging once f·h exceeds about 1/8 (pyramids creep sideways). Hence the
 // defaults 60 Hz and 8 sub-steps, and the hertz is capped at 1/8 of the sub-step rate as in Box2D
 // v3.2.
+#include "rigidlab/portable_math.h"
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -751,7 +752,9 @@ void softStep(WorldImpl& w) {
     const double w0 = w.start_angular_velocity[i];
     const Vec2 d = w.start_center[i] - b.center;
     angle[i] = w.start_angle[i] - b.angle;
-    bodies[i] = {v0.x(), v0.y(), w0, d.x(), d.y(), std::cos(angle[i]), std::sin(angle[i]), b.inv_mass, b.inv_inertia};
+    double sin_angle = 0.0, cos_angle = 1.0;
+    portableSinCos(angle[i], sin_angle, cos_angle);
+    bodies[i] = {v0.x(), v0.y(), w0, d.x(), d.y(), cos_angle, sin_angle, b.inv_mass, b.inv_inertia};
     if (b.isKinematic()) bodies[i].ii = -0.0;  // moves, though no impulse moves it (gather's still)
     kick[i] = {(b.velocity.x() - v0.x()) / substeps, (b.velocity.y() - v0.y()) / substeps,
                (b.angular_velocity - w0) / substeps, 0.0};

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "lua_args.h"
+#include "lua_math.h"
 #include "ordered_pairs.h"
 #include "rigidlab/lua/scene_text.h"
 #include "scene_line.h"
@@ -518,6 +519,7 @@ ScriptHost::ScriptHost(const SceneOptions& options, std::filesystem::path scene_
     lua_pushinteger(L, 20261121);
     lua_call(L, 1, 0);
     lua_pop(L, 1);
+    installPortableMath(L);  // the same bits on every machine (lua_math.h)
     installGuards();
     installOrderedPairs(L);
     runPrelude();

@@ -2,6 +2,7 @@
 // SI units everywhere (metre, kilogram, second, radian); angles are counter-clockwise positive.
 #pragma once
 
+#include "rigidlab/portable_math.h"
 #include <Eigen/Core>
 #include <cmath>
 
@@ -28,7 +29,12 @@ struct Rot {
   double c = 1.0;
   double s = 0.0;
 
-  static Rot fromAngle(double angle) { return {std::cos(angle), std::sin(angle)}; }
+  // Portable (portable_math.h): the same bits on every machine, unlike the C library's.
+  static Rot fromAngle(double angle) {
+    Rot q;
+    portableSinCos(angle, q.s, q.c);
+    return q;
+  }
   Vec2 apply(const Vec2& v) const { return Vec2(c * v.x() - s * v.y(), s * v.x() + c * v.y()); }
   Vec2 applyInverse(const Vec2& v) const { return Vec2(c * v.x() + s * v.y(), -s * v.x() + c * v.y()); }
   Mat22 matrix() const { return (Mat22() << c, -s, s, c).finished(); }
