@@ -60,6 +60,14 @@ constexpr double kAtanLo[9] = {0.0,
                                -0x1.8c34d25aadef6p-56,
                                0x1.1a62633145c07p-55};
 
+// The integer nearest v, |v| < 2⁵¹: adding 1.5·2⁵² leaves no bits below the units, so the sum
+// rounds v to an integer (to even on a tie, as nearbyint in the default rounding mode), and the
+// subtraction is exact. An inline add and subtract where nearbyint is a library call without SSE4.1.
+inline double nearestInteger(double v) {
+  constexpr double kShift = 0x1.8p52;
+  return (v + kShift) - kShift;
+}
+
 // sin(r + e) and cos(r + e) for |r| ≤ π/4 (a little more after rounding) and e the reduction's
 // tail, |e| ≤ one unit in the last place of r: sin(r + e) ≈ sin r + e·(1 − r²/2) and
 // cos(r + e) ≈ cos r − e·r, to far below the last place.
@@ -87,7 +95,7 @@ double reduce(double x, double& e, int& quadrant) {
   quadrant = 0;
   if (std::fabs(x) <= 0x1.921fb54442d18p-1) return x;  // |x| ≤ π/4: nothing to reduce
   if (std::fabs(x) * kTwoOverPi >= kLargest) x = std::fmod(x, kTwoPi);  // exact, by the double nearest 2π
-  const double k = std::nearbyint(x * kTwoOverPi);
+  const double k = nearestInteger(x * kTwoOverPi);
   const double y = x - k * kPio2Part1, w = k * kPio2Part2;
   const double t = y - w;
   const double v = t - y;
@@ -100,7 +108,7 @@ double reduce(double x, double& e, int& quadrant) {
 
 // atan t for 0 ≤ t ≤ 1.
 double atanUnit(double t) {
-  int k = static_cast<int>(std::nearbyint(t * 8.0));
+  int k = static_cast<int>(nearestInteger(t * 8.0));
   if (k == 1) k = 0;  // below 3/16 directly: with c = 1/8 the rounding of u would be as large as the result's last bit
   const double c = k * 0.125;
   const double u = (t - c) / (1.0 + c * t);
