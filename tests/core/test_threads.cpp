@@ -92,12 +92,25 @@ void joints(World& w) {
   for (int k = 0; k < 600; ++k) addBox(w, 0.8, 0.8, {-30.0 + 0.9 * (k % 66) + 0.05 * (k % 4), 0.4 + 0.85 * (k / 66)});
 }
 
+// Steps a world on one thread and one on `threads` side by side, comparing every step, and returns
+// the first step whose state differs (0 if none did), with the index of the first value that
+// differed, so a failure says where the bits parted.
 template <typename Build>
-std::vector<double> run(int threads, int steps, Build build) {
-  World w(defOf(threads));
-  build(w);
-  for (int i = 0; i < steps; ++i) w.step(1.0 / 60.0);
-  return stateBits(w);
+int firstDifference(int threads, int steps, Build build, size_t& value) {
+  World one(defOf(1)), many(defOf(threads));
+  build(one);
+  build(many);
+  for (int i = 1; i <= steps; ++i) {
+    one.step(1.0 / 60.0);
+    many.step(1.0 / 60.0);
+    const std::vector<double> a = stateBits(one), b = stateBits(many);
+    if (!sameBits(a, b)) {
+      value = 0;
+      while (value < a.size() && value < b.size() && std::memcmp(&a[value], &b[value], sizeof(double)) == 0) ++value;
+      return i;
+    }
+  }
+  return 0;
 }
 
 }  // namespace
@@ -118,10 +131,12 @@ TEST_CASE("threads: a pyramid, a rain and a jointed heap give the same bits on 1
   for (const Scene& s : scenes) {
     const std::string scene = s.name;  // captured as text (a char* would be printed as an address)
     CAPTURE(scene);
-    const std::vector<double> one = run(1, s.steps, s.build);
     for (int threads : {2, 3, 4}) {
       CAPTURE(threads);
-      CHECK(sameBits(run(threads, s.steps, s.build), one));
+      size_t value = 0;
+      const int step = firstDifference(threads, s.steps, s.build, value);
+      CAPTURE(value);  // the index in stateBits: 6 per body, then 3 per contact point
+      CHECK(step == 0);
     }
   }
 }
