@@ -441,7 +441,10 @@ void chooseSolvers(WorldImpl& w) {
 }
 
 SolverContact compact(const Contact& c, const SolverPrepared& prep) {
-  SolverContact s;
+  // Zeroed first: a one-point contact's second point is read by convergeSmallIslands's
+  // convergence test (its impulse, zero) and must not be whatever the stack held (it decided
+  // the number of passes, so the results differed between builds, machines and thread counts).
+  SolverContact s{};
   s.a = c.a;
   s.b = c.b;
   s.count = c.count;
