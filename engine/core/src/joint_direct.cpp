@@ -176,8 +176,10 @@ void directJointVelocitiesAtPositions(WorldImpl& w) {
     const Body& b = w.bodies[slot];
     const Vec2 d = b.center - centers[i];
     const bool moves = w.isActive(slot);
-    return SoftBody{b.velocity.x(), b.velocity.y(), b.angular_velocity, d.x(), d.y(), portableCos(b.angle - angles[i]),
-                    portableSin(b.angle - angles[i]), moves ? b.inv_mass : 0.0, moves ? b.inv_inertia : 0.0};
+    double sin_q = 0.0, cos_q = 1.0;
+    portableSinCos(b.angle - angles[i], sin_q, cos_q);
+    return SoftBody{b.velocity.x(), b.velocity.y(), b.angular_velocity, d.x(), d.y(), cos_q, sin_q,
+                    moves ? b.inv_mass : 0.0, moves ? b.inv_inertia : 0.0};
   };
   const auto mass = [&](uint32_t slot, double& im, double& ii) {
     const bool moves = w.isActive(slot);
@@ -223,8 +225,9 @@ int directJointPositions(WorldImpl& w) {
     const Body& b = w.bodies[slot];
     const Vec2 d = b.center - centers[i];
     const bool moves = w.isActive(slot);
-    return SoftBody{0.0, 0.0, 0.0, d.x(), d.y(), portableCos(b.angle - angles[i]), portableSin(b.angle - angles[i]),
-                    moves ? b.inv_mass : 0.0, moves ? b.inv_inertia : 0.0};
+    double sin_q = 0.0, cos_q = 1.0;
+    portableSinCos(b.angle - angles[i], sin_q, cos_q);
+    return SoftBody{0.0, 0.0, 0.0, d.x(), d.y(), cos_q, sin_q, moves ? b.inv_mass : 0.0, moves ? b.inv_inertia : 0.0};
   };
   const auto mass = [&](uint32_t slot, double& im, double& ii) {
     const bool moves = w.isActive(slot);

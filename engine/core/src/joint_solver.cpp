@@ -41,8 +41,9 @@ namespace {
 // correction.
 SoftBody positionView(const Body& b, const Vec2& center0, double angle0, double im, double ii) {
   const Vec2 d = b.center - center0;
-  const double a = b.angle - angle0;
-  return {0.0, 0.0, 0.0, d.x(), d.y(), portableCos(a), portableSin(a), im, ii};
+  double sin_q = 0.0, cos_q = 1.0;
+  portableSinCos(b.angle - angle0, sin_q, cos_q);
+  return {0.0, 0.0, 0.0, d.x(), d.y(), cos_q, sin_q, im, ii};
 }
 
 }  // namespace
