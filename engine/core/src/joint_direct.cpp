@@ -12,6 +12,7 @@
 #include "rigidlab/portable_math.h"
 #include <Eigen/Dense>
 #include <cmath>
+#include <span>
 
 #include "joint_rows.h"
 #include "joint_solver.h"
@@ -33,8 +34,17 @@ uint32_t root(std::vector<uint32_t>& parent, uint32_t i) {
 
 bool movable(const WorldImpl& w, uint32_t slot) { return slot != kWorldSlot && w.isActive(slot); }
 
-// The SI joints grouped by island (joints whose movable bodies are linked), in the joints' order.
-std::vector<std::vector<uint32_t>> islands(WorldImpl& w) {
+// The SI joints grouped by island (joints whose movable bodies are linked): islands in the order
+// of their first joint, each island's joints in the joints' order. Linear in the joints (a rain of
+// a thousand ragdolls is a thousand islands).
+struct JointIslands {
+  const std::vector<uint32_t>& joints;
+  const std::vector<uint32_t>& start;
+  size_t size() const { return start.empty() ? 0 : start.size() - 1; }
+  std::span<const uint32_t> operator[](size_t i) const { return {joints.data() + start[i], joints.data() + start[i + 1]}; }
+};
+
+JointIslands islands(WorldImpl& w) {
   auto& parent = w.island_parent;
   parent.resize(w.bodies.size());
   for (const uint32_t k : w.si_joints) {
@@ -55,32 +65,42 @@ std::vector<std::vector<uint32_t>> islands(WorldImpl& w) {
       }
     }
   }
-  std::vector<std::vector<uint32_t>> out;
-  std::vector<std::pair<uint32_t, size_t>> seen;  // island root → index in out
-  for (const uint32_t k : w.si_joints) {
-    const Joint& j = w.joints[k];
-    uint32_t r = kWorldSlot;
+  // Per joint its island (UINT32_MAX: no movable body), numbered in order of first appearance;
+  // then a counting sort keeps each island's joints in order.
+  auto& index = w.joint_island_index;  // per root slot: its island's number
+  index.assign(w.bodies.size(), UINT32_MAX);
+  auto& of = w.joint_island_of;
+  auto& start = w.joint_island_start;
+  auto& out = w.joint_island_joints;
+  of.resize(w.si_joints.size());
+  start.assign(1, 0);
+  for (size_t q = 0; q < w.si_joints.size(); ++q) {
+    const Joint& j = w.joints[w.si_joints[q]];
+    of[q] = UINT32_MAX;
     for (uint32_t s : {j.a, j.b, j.c, j.d})
       if (movable(w, s)) {
-        r = root(parent, s);
+        const uint32_t r = root(parent, s);
+        if (index[r] == UINT32_MAX) {
+          index[r] = static_cast<uint32_t>(start.size() - 1);
+          start.push_back(0);
+        }
+        of[q] = index[r];
+        ++start[index[r] + 1];
         break;
       }
-    if (r == kWorldSlot) continue;
-    size_t at = out.size();
-    for (const auto& [root_slot, index] : seen)
-      if (root_slot == r) at = index;
-    if (at == out.size()) {
-      seen.push_back({r, at});
-      out.emplace_back();
-    }
-    out[at].push_back(k);
   }
-  return out;
+  for (size_t i = 1; i < start.size(); ++i) start[i] += start[i - 1];
+  out.resize(start.back());
+  auto& fill = w.joint_island_fill;  // per island: where its next joint goes
+  fill.assign(start.begin(), start.end() - 1);
+  for (size_t q = 0; q < w.si_joints.size(); ++q)
+    if (of[q] != UINT32_MAX) out[fill[of[q]]++] = w.si_joints[q];
+  return {out, start};
 }
 
 // The rigid rows of the island's joints at the bodies' states given by `view` (slot → SoftBody).
 template <typename View>
-std::vector<IslandRow> gather(WorldImpl& w, const std::vector<uint32_t>& joints, View view) {
+std::vector<IslandRow> gather(WorldImpl& w, std::span<const uint32_t> joints, View view) {
   std::vector<IslandRow> rows;
   for (const uint32_t k : joints) {
     Joint& j = w.joints[k];
@@ -137,7 +157,9 @@ void directJointVelocities(WorldImpl& w, std::vector<SolverBody>& bodies) {
     im = bodies[slot].im;
     ii = bodies[slot].ii;
   };
-  for (const std::vector<uint32_t>& island : islands(w)) {
+  const JointIslands found = islands(w);
+  for (size_t i = 0; i < found.size(); ++i) {
+    const std::span<const uint32_t> island = found[i];
     std::vector<IslandRow> rows = gather(w, island, view);
     const int m = static_cast<int>(rows.size());
     if (m == 0 || m > kMaxDirectRows) continue;
@@ -186,7 +208,9 @@ void directJointVelocitiesAtPositions(WorldImpl& w) {
     im = moves ? w.bodies[slot].inv_mass : 0.0;
     ii = moves ? w.bodies[slot].inv_inertia : 0.0;
   };
-  for (const std::vector<uint32_t>& island : islands(w)) {
+  const JointIslands found = islands(w);
+  for (size_t i = 0; i < found.size(); ++i) {
+    const std::span<const uint32_t> island = found[i];
     std::vector<IslandRow> rows = gather(w, island, view);
     const int m = static_cast<int>(rows.size());
     if (m == 0 || m > kMaxDirectRows) continue;
@@ -237,7 +261,9 @@ int directJointPositions(WorldImpl& w) {
   constexpr int kNewtonSteps = 6;
   constexpr double kTolerance = 1e-12;  // [m, rad]: round-off
   int steps = 0;
-  for (const std::vector<uint32_t>& island : islands(w)) {
+  const JointIslands found = islands(w);
+  for (size_t i = 0; i < found.size(); ++i) {
+    const std::span<const uint32_t> island = found[i];
     for (int it = 0; it < kNewtonSteps; ++it) {
       const std::vector<IslandRow> rows = gather(w, island, view);
       const int m = static_cast<int>(rows.size());

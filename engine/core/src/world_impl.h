@@ -301,6 +301,10 @@ struct WorldImpl {
   std::vector<uint32_t> island_parent;  // union–find scratch
   std::vector<char> island_dynamic;     // per slot: alive and not static (sleep.cpp)
   std::vector<uint32_t> island_points;  // per island root: contact points (contact_solver.cpp)
+  // The direct joint solve's islands (joint_direct.cpp): joint indices grouped by island, island i
+  // being joint_island_joints[joint_island_start[i] .. joint_island_start[i + 1]).
+  std::vector<uint32_t> joint_island_joints, joint_island_start;
+  std::vector<uint32_t> joint_island_of, joint_island_index, joint_island_fill;  // its scratch
   std::vector<double> island_sleep;     // per island root: the shortest sleep time of its members
   std::vector<char> keep_awake;         // per slot: a force that forbids sleep acts on it
   void wakeIsland(uint32_t slot);
