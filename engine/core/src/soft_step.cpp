@@ -120,7 +120,6 @@ struct PassContext {
   SoftTally* tallies;            // of this group's lanes
   SoftTotals* totals;            // of this group
   std::vector<SoftKick>* warm;   // relax pass, not the last sub-step: the next warm start
-  bool threaded;                 // other groups of the colour may be solved at the same time
 };
 
 // The warm start of the next sub-step: the velocity change the lane's final impulses cause, added
@@ -321,7 +320,8 @@ static_assert(sizeof(SoftBody) == 9 * sizeof(double), "gather reads a SoftBody a
 // cannot be forwarded and stall). Still bodies, which several lanes may share, keep velocity zero
 // (their impulses change nothing unless they are not finite); kinematic ones keep theirs (an
 // impulse times their zero inverse mass changes nothing either).
-[[gnu::always_inline]] inline void scatter(std::vector<SoftBody>& bodies, const uint32_t index[L], const WideBody& v, bool threaded) {
+template <bool kThreaded>
+[[gnu::always_inline]] inline void scatter(std::vector<SoftBody>& bodies, const uint32_t index[L], const WideBody& v) {
   const V zero = splat(0.0);
   const M still = v.still;
   V r[4];
@@ -331,7 +331,7 @@ static_assert(sizeof(SoftBody) == 9 * sizeof(double), "gather reads a SoftBody a
   // colour. With one, the unconditional store is cheaper than a test per lane (rain of 4000: about
   // 5 % of the pass, measured).
   for (int l = 0; l < L; ++l)
-    if (!threaded || !still[l]) store(&bodies[index[l]].vx, r[l]);
+    if (!kThreaded || !still[l]) store(&bodies[index[l]].vx, r[l]);
 }
 
 struct WideAnchor {
@@ -368,21 +368,21 @@ static_assert(sizeof(SoftKick) == 4 * sizeof(double), "the kicks are read and wr
 
 // Still bodies' lanes are not written: their warm start is never applied (see warmStartWide), and
 // several groups of a colour, on different threads, may share one.
-[[gnu::always_inline]] inline void scatterKick(std::vector<SoftKick>& kicks, const uint32_t index[L], const WideKick& k, M still,
-                                               bool threaded) {
+template <bool kThreaded>
+[[gnu::always_inline]] inline void scatterKick(std::vector<SoftKick>& kicks, const uint32_t index[L], const WideKick& k, M still) {
   V r[4];
   transpose(k.vx, k.vy, k.w, splat(0.0), r[0], r[1], r[2], r[3]);
   for (int l = 0; l < L; ++l)
-    if (!threaded || !still[l]) store(&kicks[index[l]].vx, r[l]);
+    if (!kThreaded || !still[l]) store(&kicks[index[l]].vx, r[l]);
 }
 
 // addWarmStart on the four lanes at once, with the same operations in the same order per lane
 // (point 1 only where there are two points). Movable bodies appear in one lane at most. The
 // immovable ones, which several lanes may share, are not written: their warm start is never
 // applied (the kick loop runs over the moving bodies only).
-template <int NP>
+template <int NP, bool kThreaded>
 [[gnu::always_inline]] inline void warmStartWide(const WideBody& a, const WideBody& b, const SoftLanes& c, M two, V nx, V ny,
-                                                  const V pn[2], const V pt[2], std::vector<SoftKick>& warm, bool threaded) {
+                                                  const V pn[2], const V pt[2], std::vector<SoftKick>& warm) {
   const V tx = ny, ty = -nx;
   WideKick wa = gatherKick(warm, c.a), wb = gatherKick(warm, c.b);
   for (int i = 0; i < NP; ++i) {
@@ -398,13 +398,13 @@ template <int NP>
       wb = {two ? nb.vx : wb.vx, two ? nb.vy : wb.vy, two ? nb.w : wb.w};
     }
   }
-  scatterKick(warm, c.a, wa, a.still, threaded);
-  scatterKick(warm, c.b, wb, b.still, threaded);
+  scatterKick<kThreaded>(warm, c.a, wa, a.still);
+  scatterKick<kThreaded>(warm, c.b, wb, b.still);
 }
 
 // NP: the most points of any lane (SoftLanes::points); groups of one-point contacts (circles) skip
 // the second point's work, half of the pass.
-template <bool kSoft, int NP>
+template <bool kSoft, int NP, bool kThreaded>
 [[gnu::always_inline]] inline void solveWide(std::vector<SoftBody>& bodies, SoftLanes& c, const PassContext& ctx) {
   WideBody a = gather(bodies, c.a), b = gather(bodies, c.b);
   const V nx = load(c.nx), ny = load(c.ny);
@@ -498,8 +498,8 @@ template <bool kSoft, int NP>
     store(c.pn[i], pn[i]);
     store(c.pt[i], pt[i]);
   }
-  scatter(bodies, c.a, a, ctx.threaded);
-  scatter(bodies, c.b, b, ctx.threaded);
+  scatter<kThreaded>(bodies, c.a, a);
+  scatter<kThreaded>(bodies, c.b, b);
   // Only real points count (a neutral one's impulses are zero unless the velocities are not finite).
   const M two = M{c.count[0], c.count[1], c.count[2], c.count[3]} == 2;
   M acted = (pn[0] != zero) | (pt[0] != zero);
@@ -507,7 +507,7 @@ template <bool kSoft, int NP>
   // Empty lanes may record anything: the write-back reads real contacts only.
   storeMask(c.acted, loadMask(c.acted) | acted);
   if (!kSoft) {
-    if (ctx.warm) warmStartWide<NP>(a, b, c, two, nx, ny, pn, pt, *ctx.warm, ctx.threaded);
+    if (ctx.warm) warmStartWide<NP, kThreaded>(a, b, c, two, nx, ny, pn, pt, *ctx.warm);
     SoftTotals& t = *ctx.totals;
     for (int i = 0; i < NP; ++i) {  // each sub-step applies its final impulses in all
       store(t.n[i], load(t.n[i]) + pn[i]);
@@ -521,20 +521,33 @@ bool& onePointPass() {
   return on;
 }
 
-// One pass over all groups.
+// One pass over the groups g0 … g1. kThreaded: other groups of the colour may be solved on other
+// threads at the same time, so bodies that several lanes share are not written (see scatter);
+// fixed at compile time so that the serial pass stores without a test per lane.
+template <bool kSoft, bool kThreaded>
+[[gnu::always_inline]] inline void passGroups(std::vector<SoftBody>& bodies, std::vector<SoftLanes>& groups, std::vector<SoftTally>& tallies,
+                                              std::vector<SoftTotals>& totals, double inv_h, int substep, std::vector<SoftKick>* warm,
+                                              const Level* levels, size_t g0, size_t g1) {
+  for (size_t g = g0; g < g1; ++g) {
+    const PassContext ctx{inv_h, substep, levels, &tallies[g * L], &totals[g], warm};
+    if (groups[g].serial) {
+      solveGroup<kSoft>(bodies, groups[g], ctx);
+    } else if (groups[g].points <= 1 && onePointPass()) {
+      solveWide<kSoft, 1, kThreaded>(bodies, groups[g], ctx);
+    } else {
+      solveWide<kSoft, 2, kThreaded>(bodies, groups[g], ctx);
+    }
+  }
+}
+
 template <bool kSoft>
 [[gnu::always_inline]] inline void passBody(std::vector<SoftBody>& bodies, std::vector<SoftLanes>& groups, std::vector<SoftTally>& tallies,
                                             std::vector<SoftTotals>& totals, double inv_h, int substep, std::vector<SoftKick>* warm,
                                             const Level* levels, size_t g0, size_t g1, bool threaded) {
-  for (size_t g = g0; g < g1; ++g) {
-    const PassContext ctx{inv_h, substep, levels, &tallies[g * L], &totals[g], warm, threaded};
-    if (groups[g].serial) {
-      solveGroup<kSoft>(bodies, groups[g], ctx);
-    } else if (groups[g].points <= 1 && onePointPass()) {
-      solveWide<kSoft, 1>(bodies, groups[g], ctx);
-    } else {
-      solveWide<kSoft, 2>(bodies, groups[g], ctx);
-    }
+  if (threaded) {
+    passGroups<kSoft, true>(bodies, groups, tallies, totals, inv_h, substep, warm, levels, g0, g1);
+  } else {
+    passGroups<kSoft, false>(bodies, groups, tallies, totals, inv_h, substep, warm, levels, g0, g1);
   }
 }
 
