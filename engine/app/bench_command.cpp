@@ -38,7 +38,10 @@ contacts, calls into Lua, peak memory, and the peers' stability metrics.
                 spread [min-max], the ratios and both engines' quality figures
   --v3-threads T  Box2D v3's second configuration (default 2; 1 skips it)
   --solver NAME contact solver: auto (default), sequential_impulses or soft_step
-  --substeps N  soft step sub-steps per step (default 8)
+  --substeps N  soft step sub-steps per step (default 8); with --v3 a list such as 8,5 runs
+                rigidlab at each (a row each, alternated with v3 in every round), so that the
+                default and the sub-steps at which rigidlab's results are as good as v3's are
+                compared in one run
   --iterations N  sequential impulses velocity passes per step (default 10)
   --impacts NAME  located (default: impacts of small free islands located inside the step while
                 at most 128 bodies are awake) or per_step (every impact once per step), so that
@@ -48,6 +51,24 @@ contacts, calls into Lua, peak memory, and the peers' stability metrics.
 
 scenes:
 )";
+
+// --substeps: one count, or (for --v3) a comma-separated list; each 1…64.
+std::vector<int> substepList(const std::optional<std::string>& text, int fallback) {
+  if (!text) return {fallback};
+  std::vector<int> out;
+  size_t start = 0;
+  while (start <= text->size()) {
+    const size_t comma = std::min(text->find(',', start), text->size());
+    const std::string item = text->substr(start, comma - start);
+    char* end = nullptr;
+    const long value = std::strtol(item.c_str(), &end, 10);
+    if (item.empty() || *end != '\0' || value < 1 || value > 64)
+      throw UsageError("bench: --substeps must be a number from 1 to 64 or a list of them such as 8,5, got '" + *text + "'");
+    out.push_back(static_cast<int>(value));
+    start = comma + 1;
+  }
+  return out;
+}
 
 }  // namespace
 
@@ -72,9 +93,9 @@ int benchCommand(const std::vector<std::string>& argv) {
     if (!impacts) throw UsageError("bench: --impacts must be one of " + impactHandlingNames() + ", got '" + *name + "'");
     settings.impacts = *impacts;
   }
-  settings.substeps = static_cast<int>(args.integer("substeps", 1).value_or(settings.substeps));
+  const std::vector<int> substeps = substepList(args.value("substeps"), settings.substeps);
+  settings.substeps = substeps.front();
   settings.iterations = static_cast<int>(args.integer("iterations", 1).value_or(settings.iterations));
-  if (settings.substeps > 64) throw UsageError("bench: --substeps must be at most 64");
   if (settings.iterations > 10000) throw UsageError("bench: --iterations must be at most 10000");
   settings.threads = static_cast<int>(args.integer("threads", 0).value_or(settings.threads));
   if (settings.threads > 64) throw UsageError("bench: --threads must be at most 64");
@@ -100,8 +121,9 @@ int benchCommand(const std::vector<std::string>& argv) {
       scenes.push_back(*s);
       if (steps) scenes.back().steps = static_cast<int>(*steps);
     }
-    return compareV3(scenes, *v3, reps, v3_threads, json);
+    return compareV3(scenes, *v3, reps, v3_threads, substeps, json);
   }
+  if (substeps.size() > 1) throw UsageError("bench: a list of --substeps is for comparisons with --v3; give one number");
   std::vector<JsonValue> results;
   for (size_t i = 0; i < selected.size(); ++i) {
     const BenchScene* s = selected[i];

@@ -140,7 +140,7 @@ struct Series {
 }  // namespace
 
 int compareV3(const std::vector<BenchScene>& scenes, const std::filesystem::path& program, int rounds, int threads,
-              bool json) {
+              const std::vector<int>& substeps, bool json) {
   if (!std::filesystem::exists(program)) {
     std::fprintf(stderr, "bench: no Box2D v3 peer program at %s (--v3 PATH or RIGIDLAB_V3_BENCH)\n", program.c_str());
     return kExitUsage;
@@ -155,10 +155,17 @@ int compareV3(const std::vector<BenchScene>& scenes, const std::filesystem::path
       if (!json) std::printf("%-14s (Box2D v3 has no such scene)\n", s.name.c_str());
       continue;
     }
-    Series ours, one, many;
-    for (int r = 0; r < rounds; ++r) {  // alternated, so that a change in load hits all three
+    std::vector<Series> ours(substeps.size());
+    Series one, many;
+    WorldDef& settings = benchSettings();
+    const int default_substeps = settings.substeps;
+    for (int r = 0; r < rounds; ++r) {  // alternated, so that a change in load hits every configuration
       std::fprintf(stderr, "bench: %s round %d/%d ...\n", s.name.c_str(), r + 1, rounds);
-      ours.add(parseJson(runIsolated(s, 1)));
+      for (size_t k = 0; k < substeps.size(); ++k) {
+        settings.substeps = substeps[k];
+        ours[k].add(parseJson(runIsolated(s, 1)));
+      }
+      settings.substeps = default_substeps;
       one.add(runProgram(quoted + args + " --reps=1"));
       if (threads > 1) many.add(runProgram(quoted + args + " --reps=1 --workers=" + std::to_string(threads)));
     }
@@ -167,21 +174,25 @@ int compareV3(const std::vector<BenchScene>& scenes, const std::filesystem::path
                    args.c_str());
       continue;
     }
-    const double r1 = ours.mid() / one.mid(), r2 = ours.mid() / many.mid();
-    if (json) {
-      std::printf("{\"engine\": \"rigidlab\", \"compare\": \"box2d_v3\", \"name\": \"%s\", \"rounds\": %d, "
-                  "\"ms\": %s, \"ms_min\": %s, \"ms_max\": %s, \"v3_ms\": %s, \"v3_ms_min\": %s, \"v3_ms_max\": %s, "
-                  "\"v3_threads\": %d, \"v3_mt_ms\": %s, \"v3_mt_ms_min\": %s, \"v3_mt_ms_max\": %s, \"ratio\": %s, "
-                  "\"ratio_mt\": %s, \"metrics\": %s, \"v3_metrics\": %s}\n",
-                  s.name.c_str(), rounds, fmt(ours.mid()).c_str(), fmt(ours.lo()).c_str(), fmt(ours.hi()).c_str(),
-                  fmt(one.mid()).c_str(), fmt(one.lo()).c_str(), fmt(one.hi()).c_str(), threads,
-                  fmt(many.mid()).c_str(), fmt(many.lo()).c_str(), fmt(many.hi()).c_str(), fmt(r1).c_str(),
-                  fmt(r2).c_str(), ours.last && ours.last->get("metrics") ? ours.last->get("metrics")->dump().c_str() : "{}",
-                  one.last->get("metrics") ? one.last->get("metrics")->dump().c_str() : "{}");
-    } else {
-      std::printf("%-14s %-26s %-26s %-26s %6.2fx %6.2fx   %-44s %s\n", s.name.c_str(), ours.spread().c_str(),
-                  one.spread().c_str(), threads > 1 ? many.spread().c_str() : "-", r1, r2,
-                  ours.last ? quality(*ours.last).c_str() : "", quality(*one.last).c_str());
+    for (size_t k = 0; k < substeps.size(); ++k) {
+      const Series& mine = ours[k];
+      const double r1 = mine.mid() / one.mid(), r2 = mine.mid() / many.mid();
+      if (json) {
+        std::printf("{\"engine\": \"rigidlab\", \"compare\": \"box2d_v3\", \"name\": \"%s\", \"substeps\": %d, "
+                    "\"rounds\": %d, \"ms\": %s, \"ms_min\": %s, \"ms_max\": %s, \"v3_ms\": %s, \"v3_ms_min\": %s, "
+                    "\"v3_ms_max\": %s, \"v3_threads\": %d, \"v3_mt_ms\": %s, \"v3_mt_ms_min\": %s, \"v3_mt_ms_max\": %s, "
+                    "\"ratio\": %s, \"ratio_mt\": %s, \"metrics\": %s, \"v3_metrics\": %s}\n",
+                    s.name.c_str(), substeps[k], rounds, fmt(mine.mid()).c_str(), fmt(mine.lo()).c_str(),
+                    fmt(mine.hi()).c_str(), fmt(one.mid()).c_str(), fmt(one.lo()).c_str(), fmt(one.hi()).c_str(), threads,
+                    fmt(many.mid()).c_str(), fmt(many.lo()).c_str(), fmt(many.hi()).c_str(), fmt(r1).c_str(),
+                    fmt(r2).c_str(), mine.last && mine.last->get("metrics") ? mine.last->get("metrics")->dump().c_str() : "{}",
+                    one.last->get("metrics") ? one.last->get("metrics")->dump().c_str() : "{}");
+      } else {
+        const std::string label = substeps.size() > 1 ? s.name + " @" + std::to_string(substeps[k]) : s.name;
+        std::printf("%-14s %-26s %-26s %-26s %6.2fx %6.2fx   %-44s %s\n", label.c_str(), mine.spread().c_str(),
+                    one.spread().c_str(), threads > 1 ? many.spread().c_str() : "-", r1, r2,
+                    mine.last ? quality(*mine.last).c_str() : "", quality(*one.last).c_str());
+      }
     }
     std::fflush(stdout);
   }
