@@ -80,6 +80,10 @@ const std::vector<BenchScene>& benchScenes();
 // ragdolls, smash, spinner, tumbler.
 void addSuiteScenes(std::vector<BenchScene>& scenes);
 bool isSuiteScene(const std::string& kind);
+// The suite's ragdolls (Box2D v3's rain) keeping `columns` columns of ragdolls before the oldest is
+// replaced; the suite's scene keeps 40. A small one lets a test compare the spawning and removal of
+// scripts/benchmarks/ragdolls.lua (its `columns` slider) with this scene's in a few dozen steps.
+BenchWorld suiteRagdolls(int columns);
 // Where each dynamic body was after the first step (by uid), for suiteMetrics.
 struct SuiteTracker {
   std::unordered_map<uint32_t, Vec2> start;

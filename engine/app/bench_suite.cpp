@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "bench_scenes.h"
+#include "rigidlab/portable_math.h"
 
 namespace rigidlab::app {
 namespace {
@@ -197,12 +198,12 @@ Human addHuman(World& w, Vec2 position, int group) {
 }
 
 // Box2D v3's rain: ragdolls in groups of 5 rain onto 5 floors of 501 small static boxes, a column of
-// groups (one per floor) every 8 steps; after 40 columns the oldest column is removed as a new one
-// falls (11 000 bodies at most).
-BenchWorld ragdollRain() {
+// groups (one per floor) every 8 steps; after `columns` columns (the suite's 40: 11 000 bodies at
+// most) the oldest column is removed as a new one falls.
+BenchWorld ragdollRain(int columns) {
   BenchWorld b = emptyBench(true);
   World& w = *b.world;
-  constexpr int kRows = 5, kColumns = 40, kGroup = 5, kGridCount = 500;
+  constexpr int kRows = 5, kGroup = 5, kGridCount = 500;
   constexpr double kGrid = 0.5;
   const BodyId ground = addBody(w, BodyType::Static, Vec2::Zero());
   for (int i = 0; i < kRows; ++i) {
@@ -210,31 +211,32 @@ BenchWorld ragdollRain() {
     for (int j = 0; j <= kGridCount; ++j, x += kGrid) addShape(w, ground, makeBox(kGrid, kGrid, Vec2(x, 45.0 * i)));
   }
   struct Rain {
-    std::vector<std::vector<Human>> groups = std::vector<std::vector<Human>>(kRows * kColumns);
+    int columns;
+    std::vector<std::vector<Human>> groups = std::vector<std::vector<Human>>(kRows * columns);
     int column_count = 0, column_index = 0;
   };
-  auto rain = std::make_shared<Rain>();
+  auto rain = std::make_shared<Rain>(Rain{columns});
   const auto create = [rain](World& world, int row, int column) {
-    const double span = kGridCount * kGrid, distance = span / kColumns;
+    const double span = kGridCount * kGrid, distance = span / rain->columns;
     Vec2 p(-0.5 * span + distance * (column + 0.5), 40.0 + 45.0 * row);
-    std::vector<Human>& g = rain->groups[row * kColumns + column];
+    std::vector<Human>& g = rain->groups[row * rain->columns + column];
     for (int i = 0; i < kGroup; ++i, p.x() += 0.5) g.push_back(addHuman(world, p, i + 1));
   };
   b.before_step = [rain, create](World& world, int step) {
     if ((step & 7) != 0) return;
-    if (rain->column_count < kColumns) {
+    if (rain->column_count < rain->columns) {
       for (int i = 0; i < kRows; ++i) create(world, i, rain->column_count);
       ++rain->column_count;
       return;
     }
     for (int i = 0; i < kRows; ++i) {
-      std::vector<Human>& g = rain->groups[i * kColumns + rain->column_index];
+      std::vector<Human>& g = rain->groups[i * rain->columns + rain->column_index];
       for (const Human& h : g)
         for (BodyId bone : h.bones) world.destroyBody(bone);  // its joints go with it
       g.clear();
       create(world, i, rain->column_index);
     }
-    rain->column_index = (rain->column_index + 1) % kColumns;
+    rain->column_index = (rain->column_index + 1) % rain->columns;
   };
   return b;
 }
@@ -271,8 +273,10 @@ BenchWorld spinner() {
     constexpr int kPoints = 360;
     World::ChainDef chain;
     for (int i = 0; i < kPoints; ++i) {
+      // portableCos and portableSin (what a Lua scene's math.cos and math.sin are): the same bits on
+      // every machine, where the C library's differ in the last bit with the processor.
       const double t = -2.0 * kPi * i / kPoints;
-      chain.points.push_back(Vec2(40.0 * std::cos(t), 40.0 * std::sin(t) + 32.0));
+      chain.points.push_back(Vec2(40.0 * portableCos(t), 40.0 * portableSin(t) + 32.0));
     }
     chain.loop = true;
     chain.material.friction = chain.material.static_friction = 0.1;
@@ -337,6 +341,8 @@ BenchWorld tumbler() {
 
 }  // namespace
 
+BenchWorld suiteRagdolls(int columns) { return ragdollRain(columns); }
+
 void addSuiteScenes(std::vector<BenchScene>& scenes) {
   const auto add = [&](const char* name, int n, const char* description, int steps, BenchWorld (*build)()) {
     scenes.push_back({name, name, n, description, steps, 1.0 / 60.0, build});
@@ -344,7 +350,8 @@ void addSuiteScenes(std::vector<BenchScene>& scenes) {
   add("large_pyramid", 5050, "Box2D v3 suite: pyramid of base 100 (5050 boxes), 500 steps", 500, largePyramid);
   add("many_pyramids", 22000, "Box2D v3 suite: 400 pyramids of base 10 (22 000 boxes), 200 steps", 200, manyPyramids);
   add("joint_grid", 10000, "Box2D v3 suite: 100 x 100 discs on 19 800 revolute joints, 500 steps", 500, jointGrid);
-  add("ragdolls", 11000, "Box2D v3 suite (its \"rain\"): 1000 ragdolls rain on 5 floors, 1000 steps", 1000, ragdollRain);
+  add("ragdolls", 11000, "Box2D v3 suite (its \"rain\"): 1000 ragdolls rain on 5 floors, 1000 steps", 1000,
+      [] { return ragdollRain(40); });
   add("smash", 9601, "Box2D v3 suite: a heavy box into 9600 sleeping boxes, no gravity, 300 steps", 300, smash);
   add("spinner", 6077, "Box2D v3 suite: 6076 bodies in a ring stirred by a motor paddle, 500 steps", 500, spinner);
   add("tumbler", 2026, "Box2D v3 suite: 2025 boxes in a turning drum, 750 steps", 750, tumbler);
