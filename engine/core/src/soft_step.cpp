@@ -923,9 +923,16 @@ void softStep(WorldImpl& w) {
   joint_step.soft = makeSoft(std::min(w.def.joint_hertz, 0.25 * inv_h), w.def.joint_damping_ratio, h);
   joint_step.warm_starting = w.def.warm_starting;
   for (uint32_t k : w.soft_joints) prepareJointAt(w, w.joints[k], joint_step);
-  const auto jointBodies = [&](const Joint& j) {
+  // Each joint's bodies, found once for the step's 3 × substeps passes over the joints.
+  auto& joint_bodies = w.soft_joint_bodies;
+  joint_bodies.resize(w.soft_joints.size());
+  for (size_t q = 0; q < w.soft_joints.size(); ++q) {
+    const Joint& j = w.joints[w.soft_joints[q]];
     const auto at = [&](uint32_t slot) { return &bodies[slot == kWorldSlot ? n : slot]; };
-    return JointBodies{at(j.a), at(j.b), at(j.c), at(j.d)};
+    joint_bodies[q] = JointBodies{at(j.a), at(j.b), at(j.c), at(j.d)};
+  }
+  const auto forEachJoint = [&](auto&& fn) {
+    for (size_t q = 0; q < w.soft_joints.size(); ++q) fn(w.joints[w.soft_joints[q]], joint_bodies[q]);
   };
 
   // Sub-steps.
@@ -958,8 +965,8 @@ void softStep(WorldImpl& w) {
         warm[i] = {0.0, 0.0, 0.0, 0.0};
       }
     });
-    for (uint32_t k : w.soft_joints) warmStartJoint(w.joints[k], jointBodies(w.joints[k]));
-    for (uint32_t k : w.soft_joints) solveJoint(w.joints[k], jointBodies(w.joints[k]), joint_step, true);
+    forEachJoint([&](Joint& j, const JointBodies& jb) { warmStartJoint(j, jb); });
+    forEachJoint([&](Joint& j, const JointBodies& jb) { solveJoint(j, jb, joint_step, true); });
     runPass(std::true_type{}, step, nullptr);
     forEach(list.size(), kBodyGrain, [&](size_t begin, size_t end) {
      for (size_t j = begin; j < end; ++j) {  // move
@@ -976,7 +983,7 @@ void softStep(WorldImpl& w) {
      }
     });
     std::vector<SoftKick>* next = step + 1 < substeps ? &warm : nullptr;
-    for (uint32_t k : w.soft_joints) solveJoint(w.joints[k], jointBodies(w.joints[k]), joint_step, false);  // relax
+    forEachJoint([&](Joint& j, const JointBodies& jb) { solveJoint(j, jb, joint_step, false); });  // relax
     runPass(std::false_type{}, step, next);
   }
   for (size_t g = 0; g < groups.size(); ++g)

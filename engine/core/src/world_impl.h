@@ -179,6 +179,7 @@ struct WorldImpl {
   std::vector<double> soft_angle;         // per slot: angle minus the angle at detection
   std::vector<char> soft_moved;           // per slot: 1 in contact and awake, 2 if also pushed
   std::vector<uint32_t> soft_list;        // the slots with soft_moved ≠ 0
+  std::vector<JointBodies> soft_joint_bodies;  // per entry of soft_joints: its bodies' SoftBody
   std::vector<Vec2> solve_start_velocity;  // per slot: velocity before the contact solve
   std::vector<double> solve_start_angular_velocity;
   std::vector<double> overlap_time;       // per slot: Σ P τ over its contact points (position_correction)
