@@ -518,6 +518,7 @@ void solveContacts(WorldImpl& w) {
   }
   // Joints' equalities solved exactly first (joint_direct.cpp), then everything by Gauss–Seidel,
   // then the equalities exactly again (the passes for contacts, limits and motors moved them).
+  findJointIslands(w);
   directJointVelocities(w, bodies);
   for (int it = 0; it < w.def.iterations; ++it) {
     for (uint32_t k : w.si_joints) solveJointVelocity(bodies, w.joints[k], step, false);

@@ -62,6 +62,9 @@ void moveJointBody(WorldImpl& w, uint32_t slot, const Vec2& dc, double d_angle);
 // correctJointPositions, which syncs the transforms of the bodies they move; returns how many
 // were taken).
 constexpr int kMaxDirectRows = 256;
+// The islands they solve (WorldImpl::joint_island_*), found once a step after the solvers are
+// chosen: until the step ends neither its SI joints nor which bodies are awake change.
+void findJointIslands(WorldImpl& w);
 struct SolverBody;
 void directJointVelocities(WorldImpl& w, std::vector<SolverBody>& bodies);
 int directJointPositions(WorldImpl& w);
