@@ -298,6 +298,7 @@ struct WorldImpl {
   std::vector<SolvedRef> solved_refs;      // per entry of solved: its bodies (contact_solver.cpp)
   std::vector<SolvedRef> soft_refs;        // per entry of soft_solved
   std::vector<uint32_t> island_order;      // the solver's constraints grouped by island
+  std::vector<double> island_joint_sizes;  // per constraint of an island: its joint's impulse size (contact_solver.cpp)
   std::vector<Contact> previous_contacts;  // last step's, for warm starting
 
   // Sleeping (sleep.cpp): island of each body slot at the last update, and the wake-up call that
