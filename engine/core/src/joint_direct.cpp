@@ -79,10 +79,10 @@ void gather(WorldImpl& w, std::span<const uint32_t> joints, View view, Mass mass
     entry.slot[3] = j.d;
     entry.slots = 0;
     entry.bodies = 0;
-    SoftBody v[4];
+    // Made in place (a copy of a view just returned stalls on reading back its fields).
+    SoftBody v[4] = {view(j, 0, j.a), view(j, 1, j.b), view(j, 2, j.c), view(j, 3, j.d)};
     for (int i = 0; i < 4; ++i) {
       const uint32_t slot = entry.slot[i];
-      v[i] = view(j, i, slot);
       entry.body[i] = UINT32_MAX;
       if (slot == kWorldSlot) continue;
       const uint32_t b = entry.body[i] = islandBody(s, slot, mass);

@@ -49,12 +49,13 @@ void rotationSinCos(WorldImpl& w, uint32_t slot, double angle, double& s, double
     memo.resize(w.bodies.size(), none);
   }
   WorldImpl::JointRotation& m = memo[slot];
-  if (std::bit_cast<uint64_t>(m.angle) != std::bit_cast<uint64_t>(angle)) {
-    portableSinCos(angle, m.s, m.c);
-    m.angle = angle;
+  if (std::bit_cast<uint64_t>(m.angle) == std::bit_cast<uint64_t>(angle)) {
+    s = m.s;
+    c = m.c;
+    return;
   }
-  s = m.s;
-  c = m.c;
+  portableSinCos(angle, s, c);
+  m = {angle, s, c};
 }
 
 // The marks of WorldImpl::joint_displaced.
@@ -119,8 +120,10 @@ void correctJointPositions(WorldImpl& w) {
     for (size_t q = 0; q < count; ++q) {
       Joint& j = w.joints[w.si_joints[q]];
       const uint32_t slots[4] = {j.a, j.b, j.c, j.d};
-      SoftBody views[4];
-      for (int i = 0; i < 4; ++i) views[i] = jointPositionView(w, j, i);  // a still body: where it is, immovable
+      // Made in place (a copy of a view just returned stalls on reading back its fields). A still
+      // body: where it is, immovable.
+      SoftBody views[4] = {jointPositionView(w, j, 0), jointPositionView(w, j, 1), jointPositionView(w, j, 2),
+                           jointPositionView(w, j, 3)};
       // Aliased slots (a gear's grounds may be one body) share a view.
       SoftBody* ptr[4];
       for (int i = 0; i < 4; ++i) {
