@@ -243,12 +243,24 @@ void storeView(SolverBody& s, const SoftBody& v) {
 
 // One joint on the solver's velocities: its warm start, or a pass without position bias.
 void solveJointVelocity(std::vector<SolverBody>& bodies, Joint& j, const JointStep& step, bool warm_start) {
-  JointViews<SolverBody> v(bodies, j, viewOf);
-  if (warm_start) {
-    warmStartJoint(j, v.bodies);
-  } else {
-    solveJoint(j, v.bodies, step, false);
+  const auto solve = [&](const JointBodies& views) {
+    if (warm_start) {
+      warmStartJoint(j, views);
+    } else {
+      solveJoint(j, views, step, false);
+    }
+  };
+  if (j.a != kWorldSlot && j.a != j.b && j.c == kWorldSlot && j.d == kWorldSlot) {
+    // Every joint but a gear: body a, and b or the world; the views JointViews would make.
+    SoftBody world{0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0};
+    SoftBody a = viewOf(bodies[j.a]), b = j.b == kWorldSlot ? world : viewOf(bodies[j.b]);
+    solve({&a, j.b == kWorldSlot ? &world : &b, &world, &world});
+    storeView(bodies[j.a], a);
+    if (j.b != kWorldSlot) storeView(bodies[j.b], b);
+    return;
   }
+  JointViews<SolverBody> v(bodies, j, viewOf);
+  solve(v.bodies);
   v.writeBack(bodies, storeView);
 }
 
@@ -309,14 +321,19 @@ void convergeSmallIslands(WorldImpl& w, std::vector<SolverBody>& bodies, std::ve
     }
     if (points <= static_cast<uint32_t>(kSmallIsland)) {
       const int passes = (jointed ? kMoreJointIterations : kMoreIterations) * w.def.iterations;
+      // Per joint of the island, the size of its impulses after its last solve (only its own solve
+      // changes them).
+      auto& sizes = w.island_joint_sizes;
+      sizes.assign(end - start, -1.0);
       for (int it = w.def.iterations; it < passes; ++it) {
         double change = 0.0, size = 0.0;
         for (size_t k = jointed ? start : end; k < end; ++k) {  // the joints first, as in the passes above
           if (order[k] < nc) continue;
           Joint& j = w.joints[joints[order[k] - nc]];
-          const double p0 = impulseSize(j.impulses);
+          double& last = sizes[k - start];
+          const double p0 = last >= 0.0 ? last : impulseSize(j.impulses);
           solveJointVelocity(bodies, j, step, false);
-          const double p1 = impulseSize(j.impulses);
+          const double p1 = last = impulseSize(j.impulses);
           change = std::max(change, std::abs(p1 - p0));
           size = std::max(size, p1);
         }
@@ -518,6 +535,7 @@ void solveContacts(WorldImpl& w) {
   }
   // Joints' equalities solved exactly first (joint_direct.cpp), then everything by Gauss–Seidel,
   // then the equalities exactly again (the passes for contacts, limits and motors moved them).
+  findJointIslands(w);
   directJointVelocities(w, bodies);
   for (int it = 0; it < w.def.iterations; ++it) {
     for (uint32_t k : w.si_joints) solveJointVelocity(bodies, w.joints[k], step, false);

@@ -21,16 +21,6 @@ const char* jointTypeName(JointType t) {
   return "?";
 }
 
-Vec2 solvePointMatrix(const SoftBody& a, const SoftBody& b, const Vec2& ra, const Vec2& rb, const Vec2& rhs) {
-  const double k11 = a.im + b.im + a.ii * ra.y() * ra.y() + b.ii * rb.y() * rb.y();
-  const double k12 = -a.ii * ra.x() * ra.y() - b.ii * rb.x() * rb.y();
-  const double k22 = a.im + b.im + a.ii * ra.x() * ra.x() + b.ii * rb.x() * rb.x();
-  double det = k11 * k22 - k12 * k12;
-  if (det == 0.0) return Vec2::Zero();
-  det = 1.0 / det;
-  return Vec2(det * (k22 * rhs.x() - k12 * rhs.y()), det * (k11 * rhs.y() - k12 * rhs.x()));
-}
-
 void solvePointConstraint(Joint& j, SoftBody& a, SoftBody& b, const JointStep& step, bool use_bias) {
   const Vec2 ra = turned(a, j.ra), rb = turned(b, j.rb);
   const Softness& soft = step.soft;

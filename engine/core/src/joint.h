@@ -58,6 +58,10 @@ struct Joint {
   Softness spring;
   JointImpulses impulses;
   double lower = 0.0, upper = 0.0, motor_speed = 0.0, max_motor_torque = 0.0;  // def's, copied at prepare
+  // Where the bodies were at prepare (sequential impulses' position pass and direct solves measure
+  // displacements from there, every pass).
+  Vec2 center_a0 = Vec2::Zero(), center_b0 = Vec2::Zero(), center_c0 = Vec2::Zero(), center_d0 = Vec2::Zero();
+  double angle_a0 = 0.0, angle_b0 = 0.0, angle_c0 = 0.0, angle_d0 = 0.0;
 
   JointDef def;  // as created (anchors and axis world at creation); tunables updated by World::updateJoint
   uint32_t generation = 0;
@@ -84,9 +88,6 @@ struct Joint {
   Vec2 axis = Vec2(1.0, 0.0);        // world axis (prismatic, wheel) at prepare
   double mc = 0.0, md = 0.0, ic = 0.0, id = 0.0;
   Softness linear_soft, angular_soft;
-  // Where the bodies were at prepare (the position pass measures displacements from there).
-  Vec2 center_a0 = Vec2::Zero(), center_b0 = Vec2::Zero(), center_c0 = Vec2::Zero(), center_d0 = Vec2::Zero();
-  double angle_a0 = 0.0, angle_b0 = 0.0, angle_c0 = 0.0, angle_d0 = 0.0;
   double impulse_h = 0.0;  // the step (or sub-step) length the impulses were accumulated over [s]
 };
 
@@ -204,8 +205,17 @@ inline void applyAngular(SoftBody& a, SoftBody& b, double l) {
   b.w += b.ii * l;
 }
 // K = [[m_A + m_B + i_A r_Ay² + i_B r_By², −i_A r_Ax r_Ay − i_B r_Bx r_By], [·, m_A + m_B + i_A r_Ax² + i_B r_Bx²]]:
-// the point constraint's effective mass matrix; solves K x = rhs (x = 0 when K is singular).
-Vec2 solvePointMatrix(const SoftBody& a, const SoftBody& b, const Vec2& ra, const Vec2& rb, const Vec2& rhs);
+// the point constraint's effective mass matrix; solves K x = rhs (x = 0 when K is singular). Inline:
+// every pass of every revolute joint calls it, and a call returns x through memory.
+inline Vec2 solvePointMatrix(const SoftBody& a, const SoftBody& b, const Vec2& ra, const Vec2& rb, const Vec2& rhs) {
+  const double k11 = a.im + b.im + a.ii * ra.y() * ra.y() + b.ii * rb.y() * rb.y();
+  const double k12 = -a.ii * ra.x() * ra.y() - b.ii * rb.x() * rb.y();
+  const double k22 = a.im + b.im + a.ii * ra.x() * ra.x() + b.ii * rb.x() * rb.x();
+  double det = k11 * k22 - k12 * k12;
+  if (det == 0.0) return Vec2::Zero();
+  det = 1.0 / det;
+  return Vec2(det * (k22 * rhs.x() - k12 * rhs.y()), det * (k11 * rhs.y() - k12 * rhs.x()));
+}
 // The rigid point constraint d = 0 (revolute) as one 2×2 block: λ = −s K⁻¹ (Ċ + β d) − a P with the
 // step's softness (s, β, a) when biased, λ = −K⁻¹ Ċ without; the same rows joint_rows.cpp writes
 // for the direct solve.

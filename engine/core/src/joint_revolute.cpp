@@ -44,9 +44,11 @@ void solveAngularLimit(Joint& j, SoftBody& a, SoftBody& b, const JointStep& step
 void solveRevolute(Joint& j, SoftBody& a, SoftBody& b, const JointStep& step, bool use_bias) {
   JointImpulses& p = j.impulses;
   const bool turns = j.ia + j.ib > 0.0;
-  if (j.enable_spring && turns && !step.position) {
-    const double c = relativeAngle(j, a, b);
-    const double impulse = -j.spring.mass_scale * j.axial_mass * (b.w - a.w + j.spring.bias_rate * c) -
+  const bool spring = j.enable_spring && turns && !step.position, limit = j.enable_limit && turns;
+  // θ once: the spring, motor and limits change the bodies' angular velocities, not their rotations.
+  const double angle = spring || limit ? relativeAngle(j, a, b) : 0.0;
+  if (spring) {
+    const double impulse = -j.spring.mass_scale * j.axial_mass * (b.w - a.w + j.spring.bias_rate * angle) -
                            j.spring.impulse_scale * p.spring;
     p.spring += impulse;
     applyAngular(a, b, impulse);
@@ -56,8 +58,7 @@ void solveRevolute(Joint& j, SoftBody& a, SoftBody& b, const JointStep& step, bo
     p.motor = std::clamp(old - j.axial_mass * (b.w - a.w - j.motor_speed), -max, max);
     applyAngular(a, b, p.motor - old);
   }
-  if (j.enable_limit && turns) {
-    const double angle = relativeAngle(j, a, b);
+  if (limit) {
     solveAngularLimit(j, a, b, step, use_bias, angle - j.lower, 1.0, p.lower);
     solveAngularLimit(j, a, b, step, use_bias, j.upper - angle, -1.0, p.upper);
   }

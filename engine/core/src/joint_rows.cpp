@@ -11,22 +11,29 @@
 namespace rigidlab {
 namespace {
 
-JointRow blank(double* impulse, double error, double max_error) {
-  JointRow r{};
+// Row r without a Jacobian yet: its impulse, error and largest correction per position pass.
+JointRow& blank(JointRow& r, double* impulse, double error, double max_error) {
+  r = JointRow{};
   r.impulse = impulse;
   r.error = error;
   r.max_error = max_error;
   return r;
 }
 
-// The two rows of "the anchors coincide" (revolute, weld).
+JointRow blank(double* impulse, double error, double max_error) {
+  JointRow r;
+  return blank(r, impulse, error, max_error);
+}
+
+// The two rows of "the anchors coincide" (revolute, weld), written in place (a row copied in
+// just after it was made stalls on reading back its fields).
 void pointRows(Joint& j, const Vec2& ra, const Vec2& rb, const Vec2& d, RowGroup& g) {
-  JointRow& x = g.rows[g.count++] = blank(&j.impulses.linear_x, d.x(), kMaxLinearCorrection);
+  JointRow& x = blank(g.rows[g.count++], &j.impulses.linear_x, d.x(), kMaxLinearCorrection);
   x.j[0][0] = -1.0;
   x.j[0][2] = ra.y();
   x.j[1][0] = 1.0;
   x.j[1][2] = -rb.y();
-  JointRow& y = g.rows[g.count++] = blank(&j.impulses.linear_y, d.y(), kMaxLinearCorrection);
+  JointRow& y = blank(g.rows[g.count++], &j.impulses.linear_y, d.y(), kMaxLinearCorrection);
   y.j[0][1] = -1.0;
   y.j[0][2] = -ra.x();
   y.j[1][1] = 1.0;

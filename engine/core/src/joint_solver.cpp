@@ -2,6 +2,7 @@
 #include "rigidlab/portable_math.h"
 #include "joint_solver.h"
 
+#include <bit>
 #include <cmath>
 
 #include "stages.h"
@@ -36,17 +37,53 @@ void prepareJointAt(WorldImpl& w, Joint& j, const JointStep& step) {
 
 namespace {
 
-// A body of the position pass: no velocity, its displacement and rotation since the joint was
-// prepared (joint.h), its inverse masses (0: immovable). The velocity the solve leaves is the
-// correction.
-SoftBody positionView(const Body& b, const Vec2& center0, double angle0, double im, double ii) {
-  const Vec2 d = b.center - center0;
-  double sin_q = 0.0, cos_q = 1.0;
-  portableSinCos(b.angle - angle0, sin_q, cos_q);
-  return {0.0, 0.0, 0.0, d.x(), d.y(), cos_q, sin_q, im, ii};
+// The sine and cosine of a body's rotation since its joints were prepared. They were all prepared
+// at the same state, so until the body moves every view of it asks for the same angle: the last
+// one is kept per body slot and reused when the angle has the same bits (the same input, the same
+// result).
+void rotationSinCos(WorldImpl& w, uint32_t slot, double angle, double& s, double& c) {
+  auto& memo = w.joint_rotation;
+  if (slot >= memo.size()) {
+    WorldImpl::JointRotation none{0.0, 0.0, 1.0};
+    portableSinCos(none.angle, none.s, none.c);
+    memo.resize(w.bodies.size(), none);
+  }
+  WorldImpl::JointRotation& m = memo[slot];
+  if (std::bit_cast<uint64_t>(m.angle) == std::bit_cast<uint64_t>(angle)) {
+    s = m.s;
+    c = m.c;
+    return;
+  }
+  portableSinCos(angle, s, c);
+  m = {angle, s, c};
 }
 
+// The marks of WorldImpl::joint_displaced.
+constexpr char kDisplaced = 1;  // displaced by its joint impulses (or by its contacts), transform synced
+constexpr char kMoved = 2;      // moved since its transform was synced
+
 }  // namespace
+
+SoftBody jointPositionView(WorldImpl& w, const Joint& j, int i) {
+  const uint32_t slots[4] = {j.a, j.b, j.c, j.d};
+  const uint32_t slot = slots[i];
+  if (slot == kWorldSlot) return {0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0};
+  const Vec2 centers[4] = {j.center_a0, j.center_b0, j.center_c0, j.center_d0};
+  const double angles[4] = {j.angle_a0, j.angle_b0, j.angle_c0, j.angle_d0};
+  const Body& b = w.bodies[slot];
+  const Vec2 d = b.center - centers[i];
+  double sin_q = 0.0, cos_q = 1.0;
+  rotationSinCos(w, slot, b.angle - angles[i], sin_q, cos_q);
+  const bool moves = w.isActive(slot);
+  return {0.0, 0.0, 0.0, d.x(), d.y(), cos_q, sin_q, moves ? b.inv_mass : 0.0, moves ? b.inv_inertia : 0.0};
+}
+
+void moveJointBody(WorldImpl& w, uint32_t slot, const Vec2& dc, double d_angle) {
+  Body& b = w.bodies[slot];
+  b.center += dc;
+  b.angle += d_angle;
+  w.joint_displaced[slot] = kMoved;
+}
 
 void correctJointPositions(WorldImpl& w) {
   if (w.si_joints.empty()) return;
@@ -60,12 +97,11 @@ void correctJointPositions(WorldImpl& w) {
     const Joint& j = w.joints[k];
     for (uint32_t slot : {j.a, j.b, j.c, j.d}) {
       if (slot == kWorldSlot || done[slot] || !w.isActive(slot)) continue;
-      done[slot] = 1;
+      done[slot] = kDisplaced;
       if (!w.solved.empty() && slot < w.overlap_weight.size() && w.overlap_weight[slot] > 0.0) continue;
-      Body& b = w.bodies[slot];
-      b.center += kappa * w.dt * (b.velocity - w.solve_start_velocity[slot]);
-      b.angle += kappa * w.dt * (b.angular_velocity - w.solve_start_angular_velocity[slot]);
-      WorldImpl::syncTransform(b);
+      const Body& b = w.bodies[slot];
+      moveJointBody(w, slot, kappa * w.dt * (b.velocity - w.solve_start_velocity[slot]),
+                    kappa * w.dt * (b.angular_velocity - w.solve_start_angular_velocity[slot]));
     }
   }
   int newton = directJointPositions(w);
@@ -84,18 +120,10 @@ void correctJointPositions(WorldImpl& w) {
     for (size_t q = 0; q < count; ++q) {
       Joint& j = w.joints[w.si_joints[q]];
       const uint32_t slots[4] = {j.a, j.b, j.c, j.d};
-      const Vec2 centers[4] = {j.center_a0, j.center_b0, j.center_c0, j.center_d0};
-      const double angles[4] = {j.angle_a0, j.angle_b0, j.angle_c0, j.angle_d0};
-      SoftBody views[4];
-      for (int i = 0; i < 4; ++i) {
-        if (slots[i] == kWorldSlot) {
-          views[i] = {0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0};
-        } else {
-          const Body& b = w.bodies[slots[i]];  // a still body (static, asleep): where it is, immovable
-          const bool moves = w.isActive(slots[i]);
-          views[i] = positionView(b, centers[i], angles[i], moves ? b.inv_mass : 0.0, moves ? b.inv_inertia : 0.0);
-        }
-      }
+      // Made in place (a copy of a view just returned stalls on reading back its fields). A still
+      // body: where it is, immovable.
+      SoftBody views[4] = {jointPositionView(w, j, 0), jointPositionView(w, j, 1), jointPositionView(w, j, 2),
+                           jointPositionView(w, j, 3)};
       // Aliased slots (a gear's grounds may be one body) share a view.
       SoftBody* ptr[4];
       for (int i = 0; i < 4; ++i) {
@@ -109,12 +137,9 @@ void correctJointPositions(WorldImpl& w) {
       j.impulses = kept;
       for (int i = 0; i < 4; ++i) {
         if (ptr[i] != &views[i] || slots[i] == kWorldSlot || !w.isActive(slots[i])) continue;
-        Body& b = w.bodies[slots[i]];
         const SoftBody& v = views[i];
         if (v.vx == 0.0 && v.vy == 0.0 && v.w == 0.0) continue;
-        b.center += Vec2(v.vx, v.vy);
-        b.angle += v.w;
-        WorldImpl::syncTransform(b);
+        moveJointBody(w, slots[i], Vec2(v.vx, v.vy), v.w);
         largest = std::max({largest, std::abs(v.vx), std::abs(v.vy), std::abs(v.w)});
       }
     }
@@ -122,6 +147,15 @@ void correctJointPositions(WorldImpl& w) {
   }
   newton += directJointPositions(w);  // the passes' limits may have opened the equalities a little
   directJointVelocitiesAtPositions(w);
+  // The transforms of the bodies moved, at their final centres and angles.
+  for (uint32_t k : w.si_joints) {
+    const Joint& j = w.joints[k];
+    for (uint32_t slot : {j.a, j.b, j.c, j.d})
+      if (slot != kWorldSlot && done[slot] == kMoved) {
+        WorldImpl::syncTransform(w.bodies[slot]);
+        done[slot] = kDisplaced;
+      }
+  }
   w.stats.joint_position_passes = passes + 1;
   w.stats.joint_newton_steps = newton;
 }

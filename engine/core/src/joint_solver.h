@@ -49,10 +49,22 @@ struct JointViews {
 // solve in position mode for their limits (joint.h).
 void correctJointPositions(WorldImpl& w);
 
+// The joint's body i (0 to 3: a, b, c, d) as the position pass sees it: no velocity, its
+// displacement and rotation since the joint was prepared, its inverse masses (0 if it is still:
+// static or asleep); the world is an immovable body that has not moved.
+SoftBody jointPositionView(WorldImpl& w, const Joint& j, int i);
+// Moves a body during the position pass (by Δc, Δθ). Its transform is synced once, when the pass
+// ends: until then only the views above read the body, and they read its centre and angle.
+void moveJointBody(WorldImpl& w, uint32_t slot, const Vec2& dc, double d_angle);
+
 // The direct solves of small islands of joints (joint_direct.cpp): exact for the joints' rigid
-// equality rows, on the solver's velocities, and on the bodies' positions (Newton steps; returns
-// how many were taken).
+// equality rows, on the solver's velocities, and on the bodies' positions (Newton steps, inside
+// correctJointPositions, which syncs the transforms of the bodies they move; returns how many
+// were taken).
 constexpr int kMaxDirectRows = 256;
+// The islands they solve (WorldImpl::joint_island_*), found once a step after the solvers are
+// chosen: until the step ends neither its SI joints nor which bodies are awake change.
+void findJointIslands(WorldImpl& w);
 struct SolverBody;
 void directJointVelocities(WorldImpl& w, std::vector<SolverBody>& bodies);
 int directJointPositions(WorldImpl& w);

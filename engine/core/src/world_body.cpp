@@ -10,6 +10,33 @@
 namespace rigidlab {
 namespace {
 
+// The contacts' keys (contact.h: 12 bytes, index for index with the 320-byte contacts) name the
+// same bodies, so the walks over what touches a body read them instead of the contacts.
+void wakeTouching(WorldImpl& w, uint32_t slot) {  // what rested on it may now fall
+  for (const ContactKey& k : w.contact_keys) {
+    if (k.a == slot) w.wakeIsland(k.b);
+    if (k.b == slot) w.wakeIsland(k.a);
+  }
+}
+
+// Drops the contacts (and their keys) that refer to the slot, so contacts() never names a dead or
+// disabled body. The step before last's contacts (previous_contacts) are left as they are: the
+// next narrow phase swaps them out and clears them unread (narrow_phase.cpp).
+void dropContacts(WorldImpl& w, uint32_t slot) {
+  auto& keys = w.contact_keys;
+  size_t kept = 0;
+  for (size_t i = 0; i < keys.size(); ++i) {
+    if (keys[i].a == slot || keys[i].b == slot) continue;
+    if (kept != i) {
+      w.contacts[kept] = w.contacts[i];
+      keys[kept] = keys[i];
+    }
+    ++kept;
+  }
+  w.contacts.resize(kept);
+  keys.resize(kept);
+}
+
 // Sets the body's transform and centre of mass from its origin and angle. A finite position near
 // the largest double can still put the centre of mass (position + the rotated centre offset) out
 // of range: refused naming position, so that no body starts with a non-finite state (fuzz_world).
@@ -167,10 +194,7 @@ void World::destroyBody(BodyId id) {
     const ForceEntry& f = w.forces[i];
     if (f.alive && (f.a == id || f.b == id)) removeForce({i, f.generation});
   }
-  for (const Contact& c : w.contacts) {  // what rested on it may now fall
-    if (c.a == id.index) w.wakeIsland(c.b);
-    if (c.b == id.index) w.wakeIsland(c.a);
-  }
+  wakeTouching(w, id.index);
   if (id.index < w.body_joints.size()) {
     const std::vector<uint32_t> joints = w.body_joints[id.index];  // releasing edits the list
     for (uint32_t k : joints)
@@ -186,12 +210,7 @@ void World::destroyBody(BodyId id) {
   b.uid = 0;
   w.alive[id.index] = 0;
   w.free_bodies.push_back(id.index);
-  // Drop contacts (and their keys, which stay index for index with them) that refer to the slot,
-  // so contacts() never names a dead body.
-  const auto refersToSlot = [&](const auto& c) { return c.a == id.index || c.b == id.index; };
-  std::erase_if(w.contacts, refersToSlot);
-  std::erase_if(w.previous_contacts, refersToSlot);
-  std::erase_if(w.contact_keys, refersToSlot);
+  dropContacts(w, id.index);
 }
 
 bool World::isValid(BodyId id) const { return impl_->isLive(id); }
@@ -364,14 +383,8 @@ void World::setEnabled(BodyId id, bool on) {
   b.awake = on;  // a disabled body is never awake (WorldImpl::isActive)
   b.sleep_time = 0.0;
   if (!on) {  // what rested on it may now fall; its contacts go
-    for (const Contact& c : w.contacts) {
-      if (c.a == id.index) w.wakeIsland(c.b);
-      if (c.b == id.index) w.wakeIsland(c.a);
-    }
-    const auto refersToSlot = [&](const auto& c) { return c.a == id.index || c.b == id.index; };
-    std::erase_if(w.contacts, refersToSlot);
-    std::erase_if(w.previous_contacts, refersToSlot);
-    std::erase_if(w.contact_keys, refersToSlot);
+    wakeTouching(w, id.index);
+    dropContacts(w, id.index);
   }
 }
 

@@ -12,6 +12,7 @@
 #include "contact.h"
 #include "impact.h"
 #include "joint.h"
+#include "joint_direct.h"
 #include "task_pool.h"
 #include "manifold.h"
 #include "rigidlab/error.h"
@@ -105,6 +106,10 @@ struct WorldImpl {
   std::vector<std::vector<uint32_t>> body_joints;  // per body slot: joint slots
   std::vector<uint32_t> si_joints, soft_joints;    // this step's, by solver (contact_solver.cpp)
   std::vector<char> joint_displaced;               // per slot: scratch of joint_solver.cpp
+  struct JointRotation {  // an angle and its sine and cosine
+    double angle, s, c;
+  };
+  std::vector<JointRotation> joint_rotation;       // per slot: the last rotation a joint view took (joint_solver.cpp)
   struct JointBreak {  // a joint that broke in the last step (removed at its end)
     JointId id;
     JointDef def;
@@ -294,6 +299,7 @@ struct WorldImpl {
   std::vector<SolvedRef> solved_refs;      // per entry of solved: its bodies (contact_solver.cpp)
   std::vector<SolvedRef> soft_refs;        // per entry of soft_solved
   std::vector<uint32_t> island_order;      // the solver's constraints grouped by island
+  std::vector<double> island_joint_sizes;  // per constraint of an island: its joint's impulse size (contact_solver.cpp)
   std::vector<Contact> previous_contacts;  // last step's, for warm starting
 
   // Sleeping (sleep.cpp): island of each body slot at the last update, and the wake-up call that
@@ -306,6 +312,7 @@ struct WorldImpl {
   // being joint_island_joints[joint_island_start[i] .. joint_island_start[i + 1]).
   std::vector<uint32_t> joint_island_joints, joint_island_start;
   std::vector<uint32_t> joint_island_of, joint_island_index, joint_island_fill;  // its scratch
+  DirectJointScratch direct_joints;     // the islands' rows and matrices (joint_direct.h)
   std::vector<double> island_sleep;     // per island root: the shortest sleep time of its members
   std::vector<char> keep_awake;         // per slot: a force that forbids sleep acts on it
   void wakeIsland(uint32_t slot);
