@@ -5,6 +5,7 @@
 
 #include <Eigen/Dense>
 #include <cstdint>
+#include <deque>
 #include <vector>
 
 #include "joint_rows.h"
@@ -24,7 +25,15 @@ struct IslandRow {
   uint64_t bodies;
 };
 
+// Working storage only: a copy of the world (World::snapshot) starts with an empty one, and
+// assigning one keeps the target's own, which the next solve fills again with the same bits (kept
+// factors are reused only beside the K they were computed from). Nothing is copied because a
+// default-made Eigen::LDLT that was never computed holds no valid state to copy (UBSan).
 struct DirectJointScratch {
+  DirectJointScratch() = default;
+  DirectJointScratch(const DirectJointScratch&) {}
+  DirectJointScratch& operator=(const DirectJointScratch&) { return *this; }
+
   std::vector<IslandRow> rows;
   std::vector<uint32_t> local;         // per body slot: its index in the island, UINT32_MAX outside it
   std::vector<uint32_t> island_bodies; // the island's body slots by index
@@ -35,8 +44,10 @@ struct DirectJointScratch {
   Eigen::VectorXd rhs, lambda;
   Eigen::LDLT<Eigen::MatrixXd> ldlt;   // reused: recomputing allocates nothing while the size holds
   // Per island (its number in this step's islands): K and its factors at the last velocity solve.
-  std::vector<Eigen::MatrixXd> velocity_k;
-  std::vector<Eigen::LDLT<Eigen::MatrixXd>> velocity_ldlt;
+  // Deques: growing one makes its new elements in place and never copies an LDLT that an island
+  // left uncomputed (one with no rows or too many).
+  std::deque<Eigen::MatrixXd> velocity_k;
+  std::deque<Eigen::LDLT<Eigen::MatrixXd>> velocity_ldlt;
 };
 
 }  // namespace rigidlab
