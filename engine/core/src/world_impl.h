@@ -298,6 +298,11 @@ struct WorldImpl {
   // Sleeping (sleep.cpp): island of each body slot at the last update, and the wake-up call that
   // every edit, contact and force makes.
   std::vector<uint32_t> island;
+  // wakeIsland's: the slots of `island` grouped by island, those of root r being
+  // island_members[island_first[r] .. island_first[r + 1]); made at the first wake after `island`
+  // changed (updateSleep clears the flag).
+  std::vector<uint32_t> island_members, island_first;
+  UncopiedFlag island_members_current;
   std::vector<uint32_t> island_parent;  // union–find scratch
   std::vector<char> island_dynamic;     // per slot: alive and not static (sleep.cpp)
   std::vector<uint32_t> island_points;  // per island root: contact points (contact_solver.cpp)
