@@ -246,6 +246,10 @@ void findPairs(WorldImpl& w) {
     if (!p.active) continue;
     WorldImpl::ShapeView& view = w.shape_views[i];
     const Transform& xf = *view.placed.xf;
+    // isMoving and isAsleep for a body that is alive and enabled (its proxy is active).
+    const Body& b = w.bodies[view.body];
+    view.moving = b.isDynamic() ? b.awake : b.isKinematic() && (b.velocity != Vec2::Zero() || b.angular_velocity != 0.0);
+    view.asleep = b.isDynamic() && !b.awake;
     if (view.type == ShapeType::Circle) {
       view.center = xf.apply(view.local_center);  // computeAabb's box, from the centre placed once
       const Vec2 r = Vec2::Constant(view.radius);

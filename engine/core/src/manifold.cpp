@@ -331,7 +331,7 @@ Manifold collideShapes(const Shape& a, const Transform& xa, const Shape& b, cons
       v[i] = xf.apply(s.vertices[i]);
       n[i] = xf.q.apply(s.normals[i]);
     }
-    return PlacedShape{&s, &xf, WorldPolygon{v, n, static_cast<int>(s.vertices.size()), false, maxExtent(s)}};
+    return PlacedShape{WorldPolygon{v, n, static_cast<int>(s.vertices.size()), false, maxExtent(s)}, &s, &xf};
   };
   return collide(place(a, xa, va, na), place(b, xb, vb, nb), margin);
 }

@@ -50,9 +50,9 @@ inline bool isBox(const Vec2* normals, int count) {
 // transform, and for the kinds with corners (polygon, capsule, segment, chain segment) those
 // corners and normals in world coordinates (placed once per step by the broad phase).
 struct PlacedShape {
+  WorldPolygon poly;  // not set for circles
   const Shape* shape;
   const Transform* xf;
-  WorldPolygon poly;  // not set for circles
 };
 
 // The manifold of any two shapes: dispatches on the two kinds (a table with one function per pair
