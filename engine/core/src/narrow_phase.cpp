@@ -350,8 +350,8 @@ class Merge {
 
   // A contact from the pair's manifold (m.count > 0), taking over the impulses of last step's
   // points with the same features (`had`: the pair had a contact).
-  void add(const BodyPair& pair, const WorldImpl::ShapeView& va, const WorldImpl::ShapeView& vb,
-                             const Manifold& m, bool had) {
+  void add(const BodyPair& pair, const WorldImpl::ShapeView& va, const WorldImpl::ShapeView& vb, const Manifold& m,
+           bool had) {
     WorldImpl& w = w_;
     const uint32_t ia = va.body, ib = vb.body;
     // An awake body reaching a sleeping one wakes its island. (Only a body asleep when the stage
