@@ -164,7 +164,10 @@ void gatherShapeView(const WorldImpl& w, size_t i, bool joints, WorldImpl::Shape
   view.local_center = shape.center;
   view.local_vertices = shape.vertices.data();
   view.local_normals = shape.normals.data();
-  view.placed.poly = {nullptr, nullptr, static_cast<int>(shape.vertices.size()), shape.extent};
+  // A box stays one when placed (manifold.h isBox): rounding to nearest is symmetric, so
+  // c·(−x) − s·(−y) = −(c·x − s·y) exactly, and Rot::apply turns n and −n into exact opposites.
+  view.placed.poly = {nullptr, nullptr, static_cast<int>(shape.vertices.size()),
+                      isBox(shape.normals.data(), static_cast<int>(shape.normals.size())), shape.extent};
   view.extent = shape.extent > 0.0 ? shape.extent : maxExtent(shape);  // maxExtent without the call
   view.material = s.material;
   // A body with joints may be kept from colliding with its jointed partners (collide_connected).
@@ -189,7 +192,7 @@ void verifyShapeViews(const WorldImpl& w, bool joints) {
                         : v.type != k.type || v.radius != k.radius || v.local_center != k.local_center ||
                                 v.extent != k.extent || v.local_vertices != k.local_vertices ||
                                 v.local_normals != k.local_normals || v.placed.poly.count != k.placed.poly.count ||
-                                v.placed.poly.extent != k.placed.poly.extent
+                                v.placed.poly.box != k.placed.poly.box || v.placed.poly.extent != k.placed.poly.extent
                             ? "geometry"
                         : v.material.restitution != k.material.restitution || v.material.friction != k.material.friction ||
                                 v.material.static_friction != k.material.static_friction
@@ -243,6 +246,10 @@ void findPairs(WorldImpl& w) {
     if (!p.active) continue;
     WorldImpl::ShapeView& view = w.shape_views[i];
     const Transform& xf = *view.placed.xf;
+    // isMoving and isAsleep for a body that is alive and enabled (its proxy is active).
+    const Body& b = w.bodies[view.body];
+    view.moving = b.isDynamic() ? b.awake : b.isKinematic() && (b.velocity != Vec2::Zero() || b.angular_velocity != 0.0);
+    view.asleep = b.isDynamic() && !b.awake;
     if (view.type == ShapeType::Circle) {
       view.center = xf.apply(view.local_center);  // computeAabb's box, from the centre placed once
       const Vec2 r = Vec2::Constant(view.radius);
@@ -274,6 +281,12 @@ void findPairs(WorldImpl& w) {
     p.aabb.upper += half_margin;
     view.placed.poly.vertices = w.world_vertices.data() + w.polygon_offset[i];
     view.placed.poly.normals = w.world_normals.data() + w.polygon_offset[i];
+#ifdef RIGIDLAB_VERIFY_CACHES
+    if (view.placed.poly.box && !isBox(view.placed.poly.normals, count)) {
+      std::fprintf(stderr, "rigidlab: shape %zu is a box in body coordinates but not once placed\n", i);
+      std::abort();
+    }
+#endif
   }
   if (w.world_vertices.capacity() != vertex_capacity || w.world_normals.capacity() != normal_capacity) {
     for (size_t i = 0; i < n; ++i) {  // the vectors moved: point the views at where they are now

@@ -35,16 +35,24 @@ struct WorldPolygon {
   const Vec2* vertices;
   const Vec2* normals;
   int count;
+  // Four corners with opposite sides parallel (isBox), which a pair of polygons tests on two axes
+  // each instead of four. False is always correct (the general test finds the same values), only slower.
+  bool box;
   double extent;  // Shape::extent
 };
+
+// A box in the sense of WorldPolygon::box: normals[2] == −normals[0] and normals[3] == −normals[1].
+inline bool isBox(const Vec2* normals, int count) {
+  return count == 4 && normals[2] == -normals[0] && normals[3] == -normals[1];
+}
 
 // A shape placed in the world for the narrow phase: its geometry (body coordinates), the body's
 // transform, and for the kinds with corners (polygon, capsule, segment, chain segment) those
 // corners and normals in world coordinates (placed once per step by the broad phase).
 struct PlacedShape {
+  WorldPolygon poly;  // not set for circles
   const Shape* shape;
   const Transform* xf;
-  WorldPolygon poly;  // not set for circles
 };
 
 // The manifold of any two shapes: dispatches on the two kinds (a table with one function per pair
@@ -63,6 +71,25 @@ Manifold collideCircles(const Shape& a, const Transform& xa, const Shape& b, con
 Manifold collidePolygonAndCircle(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double margin);
 Manifold collidePolygons(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, double margin);
 Manifold collidePolygons(const WorldPolygon& a, const WorldPolygon& b, double margin);
+// The same in three steps, collidePolygons being clipPolygons(a, b, axes, edgeDirection(the
+// reference polygon, axes.ref_edge), margin, m) after polygonAxes. The narrow phase runs each step
+// over a block of pairs in turn, so that the square root and division of a reference edge's
+// direction overlap other pairs' work instead of holding up their own pair's clipping.
+struct PolygonAxes {
+  int ref_edge = 0, inc_edge = 0;  // of the reference polygon (b if flip, else a) and the other
+  bool flip = false;
+};
+// The separating-axis test and the choice of reference and incident edges; false when an axis
+// separates the polygons by more than margin (no points).
+bool polygonAxes(const WorldPolygon& a, const WorldPolygon& b, double margin, PolygonAxes& axes);
+// The unit direction of edge i of a counter-clockwise polygon (its start to its end).
+inline Vec2 edgeDirection(const WorldPolygon& p, int i) {
+  return (p.vertices[i + 1 == p.count ? 0 : i + 1] - p.vertices[i]).normalized();
+}
+// The incident edge clipped to the reference edge, whose direction is `tangent`, into m: its count,
+// and its normal and points up to the count (the rest of m is left as it was).
+void clipPolygons(const WorldPolygon& a, const WorldPolygon& b, const PolygonAxes& axes, const Vec2& tangent, double margin,
+                  Manifold& m);
 // A lower bound of the distance between two shapes (negative when they overlap): exact for pairs
 // with a circle; for two polygons the largest separation along their face normals (the separating
 // axis test), which never exceeds the true distance. Used by continuous collision detection.

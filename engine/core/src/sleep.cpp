@@ -31,12 +31,31 @@ void link(WorldImpl& w, uint32_t a, uint32_t b) {
 
 void WorldImpl::wakeIsland(uint32_t slot) {
   if (slot >= bodies.size() || !alive[slot] || bodies[slot].awake || !bodies[slot].enabled) return;
-  const uint32_t id = island.size() > slot ? island[slot] : slot;
-  for (uint32_t i = 0; i < bodies.size(); ++i) {
-    if (!alive[i] || !bodies[i].enabled || (i != slot && (island.size() <= i || island[i] != id))) continue;
+  const auto wake = [&](uint32_t i) {
+    if (i >= bodies.size() || !alive[i] || !bodies[i].enabled) return;
     bodies[i].awake = true;
     bodies[i].sleep_time = 0.0;
+  };
+  if (slot >= island.size()) {  // made since the islands were found: an island of its own
+    wake(slot);
+    return;
   }
+  // The members by island (a counting sort of the slots by root), once per update of the islands:
+  // waking the islands of a heap of sleeping bodies one by one then costs their sizes, not the
+  // number of bodies for each island.
+  if (!island_members_current.value) {
+    const size_t n = island.size();
+    island_first.assign(n + 1, 0);
+    for (uint32_t r : island) ++island_first[r + 1];
+    for (size_t r = 0; r < n; ++r) island_first[r + 1] += island_first[r];
+    island_members.resize(n);
+    for (uint32_t i = 0; i < n; ++i) island_members[island_first[island[i]]++] = i;
+    for (size_t r = n; r > 0; --r) island_first[r] = island_first[r - 1];  // back to the starts
+    island_first[0] = 0;
+    island_members_current.value = true;
+  }
+  const uint32_t id = island[slot];
+  for (uint32_t k = island_first[id]; k < island_first[id + 1]; ++k) wake(island_members[k]);
 }
 
 void updateSleep(WorldImpl& w) {
@@ -98,6 +117,7 @@ void updateSleep(WorldImpl& w) {
 
   // Per island: the shortest sleep time of its members (a sleeping member counts as asleep).
   w.island.resize(n);
+  w.island_members_current.value = false;
   w.island_sleep.assign(n, std::numeric_limits<double>::infinity());
   for (uint32_t i = 0; i < n; ++i) {
     w.island[i] = root(w.island_parent, i);

@@ -702,8 +702,8 @@ void io(A& a, WorldImpl& w) {
   io(a, w.pairs);
   io(a, w.contacts);
   io(a, w.contact_keys);
-  // Not previous_contacts: between steps it holds the step before last's, which the next narrow
-  // phase swaps out and clears unread (narrow_phase.cpp); only its capacity is reused.
+  // Not previous_contacts: the narrow phase's scratch, cleared or swapped out unread at its start
+  // (narrow_phase.cpp LastContacts); only its capacity is reused.
   io(a, w.island);
   // What kinematic bodies moved with last step: a velocity set since is a jump (integrator.cpp).
   io(a, w.kinematic_velocity);

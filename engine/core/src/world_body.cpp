@@ -21,7 +21,7 @@ void wakeTouching(WorldImpl& w, uint32_t slot) {  // what rested on it may now f
 
 // Drops the contacts (and their keys) that refer to the slot, so contacts() never names a dead or
 // disabled body. The step before last's contacts (previous_contacts) are left as they are: the
-// next narrow phase swaps them out and clears them unread (narrow_phase.cpp).
+// next narrow phase clears them unread (narrow_phase.cpp, LastContacts).
 void dropContacts(WorldImpl& w, uint32_t slot) {
   auto& keys = w.contact_keys;
   size_t kept = 0;

@@ -271,17 +271,22 @@ struct WorldImpl {
   // two of these instead of two BodyShapes and their bodies. Only the placed geometry (centre,
   // world polygon) changes with a step; the rest is gathered again after an edit (shapesEdited).
   struct ShapeView {
-    PlacedShape placed;  // the geometry, its body's transform, the world polygon (its corners set each step)
-    const Vec2* local_vertices;  // polygons: Shape::vertices and normals, so that placing them
-    const Vec2* local_normals;   // reads this view and not the BodyShape too (one cache line fewer)
-    Vec2 center;         // circles: the centre in the world (manifold.h collideCircleCentres); set each step
-    Vec2 local_center;   // circles: Shape::center
-    double radius;       // Shape::radius
-    double extent;       // maxExtent of the geometry: bounds the contact's slop
-    Material material;
+    // What the narrow phase reads for every pair first (the placed polygon, then these up to the
+    // material), so that a pair's two views take two cache lines each, mostly.
+    PlacedShape placed;  // the world polygon (its corners set each step), the geometry, its body's transform
     uint32_t body;       // slot
     ShapeType type;
     bool special;        // a sensor, a filter other than the default, or a jointed body: the narrow phase looks closer
+    // Set each step by the broad phase, for the narrow phase that follows it: the body moves
+    // (isMoving) or is dynamic and asleep. A body can only wake in between.
+    bool moving, asleep;
+    double extent;       // maxExtent of the geometry: bounds the contact's slop
+    Material material;
+    const Vec2* local_vertices;  // polygons: Shape::vertices and normals, so that placing them
+    const Vec2* local_normals;   // reads this view and not the BodyShape too (one cache line fewer)
+    double radius;       // Shape::radius
+    Vec2 center;         // circles: the centre in the world (manifold.h collideCircleCentres); set each step
+    Vec2 local_center;   // circles: Shape::center
   };
   std::vector<ShapeView> shape_views;
   size_t active_shapes = 0;          // shapes of enabled bodies, counted with the views
@@ -300,11 +305,19 @@ struct WorldImpl {
   std::vector<SolvedRef> soft_refs;        // per entry of soft_solved
   std::vector<uint32_t> island_order;      // the solver's constraints grouped by island
   std::vector<double> island_joint_sizes;  // per constraint of an island: its joint's impulse size (contact_solver.cpp)
-  std::vector<Contact> previous_contacts;  // last step's, for warm starting
+  std::vector<Contact> previous_contacts;  // narrow_phase.cpp: last step's contacts moved out of the way
+  // narrow_phase.cpp: written in place, the last step's contacts would have had to move out of the
+  // way of new ones (contacts begin more than end), so this step writes them anew.
+  bool contacts_displaced = false;
 
   // Sleeping (sleep.cpp): island of each body slot at the last update, and the wake-up call that
   // every edit, contact and force makes.
   std::vector<uint32_t> island;
+  // wakeIsland's: the slots of `island` grouped by island, those of root r being
+  // island_members[island_first[r] .. island_first[r + 1]); made at the first wake after `island`
+  // changed (updateSleep clears the flag).
+  std::vector<uint32_t> island_members, island_first;
+  UncopiedFlag island_members_current;
   std::vector<uint32_t> island_parent;  // union–find scratch
   std::vector<char> island_dynamic;     // per slot: alive and not static (sleep.cpp)
   std::vector<uint32_t> island_points;  // per island root: contact points (contact_solver.cpp)
@@ -323,6 +336,8 @@ struct WorldImpl {
     const Body& b = bodies[slot];
     return alive[slot] && b.isKinematic() && b.enabled && (b.velocity != Vec2::Zero() || b.angular_velocity != 0.0);
   }
+  bool isMoving(uint32_t slot) const { return isActive(slot) || isMovingKinematic(slot); }
+  bool isAsleep(uint32_t slot) const { return bodies[slot].isDynamic() && !bodies[slot].awake; }
 
   bool isLive(BodyId id) const {
     return id.index < bodies.size() && alive[id.index] && bodies[id.index].id.generation == id.generation;
