@@ -112,11 +112,20 @@ std::string quality(const JsonValue& r) {
   const JsonValue* m = r.get("metrics");
   if (!m) return "";
   if (!isSuiteScene(r.str("scene").value_or(""))) return stability(r);
-  char buf[160];
-  std::snprintf(buf, sizeof buf, "pen %.3f gap %.4f drop %.3f top %.3f", m->num("max_penetration_m").value_or(NAN),
-                m->num("max_joint_gap_m").value_or(NAN), m->num("mean_drop_m").value_or(NAN),
-                m->num("top_height_loss_m").value_or(NAN));
-  return buf;
+  // Only the figures the scene has (ragdolls have no pile, so no drop or top).
+  std::string out;
+  const auto add = [&](const char* label, const char* key, const char* format) {
+    const std::optional<double> v = m->num(key);
+    if (!v || std::isnan(*v)) return;
+    char buf[48];
+    std::snprintf(buf, sizeof buf, format, *v);
+    out += (out.empty() ? "" : " ") + std::string(label) + " " + buf;
+  };
+  add("pen", "max_penetration_m", "%.3f");
+  add("gap", "max_joint_gap_m", "%.4f");
+  add("drop", "mean_drop_m", "%.3f");
+  add("top", "top_height_loss_m", "%.3f");
+  return out;
 }
 
 struct Series {
@@ -147,8 +156,16 @@ int compareV3(const std::vector<BenchScene>& scenes, const std::filesystem::path
   }
   const std::string quoted = "'" + program.string() + "' ";
   if (!json)
-    std::printf("%-14s %-26s %-26s %-26s %7s %7s   %-44s %s\n", "scene", "rigidlab ms [min-max]", "v3 1 thread",
-                ("v3 " + std::to_string(threads) + " threads").c_str(), "/v3", "/v3 2T", "rigidlab", "Box2D v3");
+  {
+    // With --v3-threads 1 there is one v3 column and one ratio.
+    const std::string many_head = "v3 " + std::to_string(threads) + " threads", many_ratio = "/v3 " + std::to_string(threads) + "T";
+    if (threads > 1)
+      std::printf("%-14s %-26s %-26s %-26s %7s %7s   %-44s %s\n", "scene", "rigidlab ms [min-max]", "v3 1 thread",
+                  many_head.c_str(), "/v3", many_ratio.c_str(), "rigidlab", "Box2D v3");
+    else
+      std::printf("%-14s %-26s %-26s %7s   %-44s %s\n", "scene", "rigidlab ms [min-max]", "v3 1 thread", "/v3",
+                  "rigidlab", "Box2D v3");
+  }
   for (const BenchScene& s : scenes) {
     const std::string args = v3Arguments(s);
     if (args.empty()) {
@@ -189,9 +206,13 @@ int compareV3(const std::vector<BenchScene>& scenes, const std::filesystem::path
                     one.last->get("metrics") ? one.last->get("metrics")->dump().c_str() : "{}");
       } else {
         const std::string label = substeps.size() > 1 ? s.name + " @" + std::to_string(substeps[k]) : s.name;
-        std::printf("%-14s %-26s %-26s %-26s %6.2fx %6.2fx   %-44s %s\n", label.c_str(), mine.spread().c_str(),
-                    one.spread().c_str(), threads > 1 ? many.spread().c_str() : "-", r1, r2,
-                    mine.last ? quality(*mine.last).c_str() : "", quality(*one.last).c_str());
+        const std::string ours_quality = mine.last ? quality(*mine.last) : "", v3_quality = quality(*one.last);
+        if (threads > 1)
+          std::printf("%-14s %-26s %-26s %-26s %6.2fx %6.2fx   %-44s %s\n", label.c_str(), mine.spread().c_str(),
+                      one.spread().c_str(), many.spread().c_str(), r1, r2, ours_quality.c_str(), v3_quality.c_str());
+        else
+          std::printf("%-14s %-26s %-26s %6.2fx   %-44s %s\n", label.c_str(), mine.spread().c_str(),
+                      one.spread().c_str(), r1, ours_quality.c_str(), v3_quality.c_str());
       }
     }
     std::fflush(stdout);
