@@ -12,10 +12,14 @@
 namespace rigidlab {
 namespace {
 
-bool finiteState(const Body& b) {
-  // The origin too: a centre near 1e308 plus the centroid offset can overflow it (fuzz_world).
-  return isFinite(b.center) && std::isfinite(b.angle) && isFinite(b.velocity) && std::isfinite(b.angular_velocity) &&
-         isFinite(b.xf.p);
+[[gnu::always_inline]] inline bool finiteState(const Body& b) {
+  // x · 0 is ±0 for a finite x and NaN for ±∞ or NaN (IEEE 754; the build never allows fast-math),
+  // so the sum is zero exactly when every number is finite: one test per body instead of eight
+  // branches, which every body takes twice a step. The origin too: a centre near 1e308 plus the
+  // centroid offset can overflow it (fuzz_world).
+  const double sum = ((b.center.x() * 0.0 + b.center.y() * 0.0) + (b.velocity.x() * 0.0 + b.velocity.y() * 0.0)) +
+                     ((b.angle * 0.0 + b.angular_velocity * 0.0) + (b.xf.p.x() * 0.0 + b.xf.p.y() * 0.0));
+  return sum == 0.0;
 }
 
 std::string cause(const WorldImpl& w, uint32_t slot, const char* stage) {
