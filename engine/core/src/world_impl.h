@@ -178,6 +178,8 @@ struct WorldImpl {
   std::vector<uint32_t> soft_slot;        // per soft contact: its lane (group · L + lane)
   std::vector<uint32_t> soft_colors_used; // per slot: colours of the contacts that move the body
   std::vector<uint8_t> soft_color;        // per soft contact
+  std::vector<uint32_t> soft_color_order; // the soft contacts in the order they are coloured
+  std::vector<uint8_t> soft_color_bucket; // per soft contact: its place in that order (hash bucket)
   std::vector<uint32_t> soft_color_first; // per colour, then the serial groups, then the end: first group
   std::vector<SoftKick> soft_kick;        // per slot: velocity the step's forces add per sub-step
   std::vector<SoftKick> soft_warm;        // per slot: the next sub-step's warm start
