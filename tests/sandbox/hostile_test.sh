@@ -59,25 +59,19 @@ prepare() {
   done < "$scene"
 }
 
-# wait_either STDOUT_PATTERN STDERR_PATTERN TIMEOUT_MS: until one of them shows up.
-wait_either() {
-  local start
+# wait_until TIMEOUT_MS COMMAND...: until COMMAND succeeds; returns 1 on timeout.
+wait_until() {
+  local timeout=$1 start
+  shift
   start=$(now_ms)
-  until grep -q -- "$1" "$WORK/log.txt" 2>/dev/null || grep -q -- "$2" "$WORK/stderr.txt" 2>/dev/null; do
-    if [ $(( $(now_ms) - start )) -gt "$3" ]; then return 1; fi
+  until "$@"; do
+    if [ $(( $(now_ms) - start )) -gt "$timeout" ]; then return 1; fi
     sleep 0.02
   done
 }
-
-# wait_stderr PATTERN TIMEOUT_MS: until the sandbox's stderr shows it.
-wait_stderr() {
-  local start
-  start=$(now_ms)
-  until grep -q -- "$1" "$WORK/stderr.txt" 2>/dev/null; do
-    if [ $(( $(now_ms) - start )) -gt "$2" ]; then return 1; fi
-    sleep 0.02
-  done
-}
+# in_either STDOUT_PATTERN STDERR_PATTERN: the sandbox printed the first or the second.
+in_either() { grep -q -- "$1" "$WORK/log.txt" 2>/dev/null || grep -q -- "$2" "$WORK/stderr.txt" 2>/dev/null; }
+in_stderr() { grep -q -- "$1" "$WORK/stderr.txt" 2>/dev/null; }
 
 count=0
 for scene in "$HOSTILE"/*.lua; do
@@ -88,12 +82,12 @@ for scene in "$HOSTILE"/*.lua; do
   start=$(now_ms)
   rm -f "$WORK/pid"
   run_sandbox "$copy" "$dir/last.png"
-  if ! wait_either " opened " "rigidlab: " 15000; then
+  if ! wait_until 15000 in_either " opened " "rigidlab: "; then
     fail "$name: neither opened nor reported an error within 15 s"
   fi
   sleep 0.3
   { cat "$scene"; echo "-- saved again by hostile_test.sh"; } | atomic_write "$copy"
-  wait_either " reloaded " "reload failed" 20000 || fail "$name: no reload and no reload failure within 20 s"
+  wait_until 20000 in_either " reloaded " "reload failed" || fail "$name: no reload and no reload failure within 20 s"
   sleep 0.5
   pid=$(cat "$WORK/pid" 2>/dev/null || echo 0)
   [ "$pid" != 0 ] || fail "$name: the sandbox did not start"
@@ -102,7 +96,7 @@ for scene in "$HOSTILE"/*.lua; do
   if grep -q "^-- exit: 1$" "$scene" && ! grep -q "^-- sandbox: no-overlay$" "$scene"; then expects_error=1; fi
   # A scene that fails while running (pile_growing: at its 4th step, each a heap of hundreds of
   # overlapping boxes) may need seconds of frames under the sanitizers on a loaded machine.
-  if [ "$expects_error" = 1 ]; then wait_stderr "rigidlab: " 20000 || true; fi
+  if [ "$expects_error" = 1 ]; then wait_until 20000 in_stderr "rigidlab: " || true; fi
   stop_sandbox
   case "$SANDBOX_STATUS" in
     0|1) ;;
