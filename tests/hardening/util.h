@@ -41,6 +41,19 @@ inline Outcome timed(const std::function<void()>& f) {
   return o;
 }
 
+// An upper bound on wall-clock time, checked on a shared machine where a busy neighbour can stall
+// any one run: f runs again (up to `tries` times in all) while it takes `limit_ms` or more, and the
+// fastest run is returned. Code that is really too slow misses the bound every time. f must be
+// safe to run more than once (each run loads its own scene).
+inline Outcome timedWithin(double limit_ms, const std::function<void()>& f, int tries = 3) {
+  Outcome best = timed(f);
+  for (int i = 1; i < tries && best.ms >= limit_ms; ++i) {
+    const Outcome o = timed(f);
+    if (o.ms < best.ms) best = o;
+  }
+  return best;
+}
+
 inline bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
 }  // namespace hardening
