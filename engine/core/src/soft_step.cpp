@@ -642,8 +642,9 @@ inline uint64_t mixPair(uint32_t a, uint32_t b) {
 // the unconverged part of the friction then pushes every row the same way: pyramids walk sideways,
 // and a pile built in mirror order walks the other way. In hash order the sweep has no direction.
 // Measured (bench, 2026-12-05; largest sideways move of a box, pyramid of base 100): 0.886 → 0.253 m
-// at 4 sub-steps, 0.072 → 0.034 m at the default 8 (Box2D v3 at its 4: 0.181 m); heights, overlaps
-// and penetrations move by a few per cent either way (docs/performance.md).
+// at 4 sub-steps, 0.072 → 0.034 m at the default 8 (Box2D v3 at its 4: 0.181 m); heights move by a
+// few per cent, the deepest contact and largest overlap by up to about 20 %, either way
+// (docs/performance.md).
 void colouringOrder(WorldImpl& w) {
   const size_t n = w.soft_solved.size();
   auto& bucket = w.soft_color_bucket;
