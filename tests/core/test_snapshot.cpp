@@ -4,6 +4,8 @@
 #include <doctest/doctest.h>
 
 #include <bit>
+#include <cmath>
+#include <limits>
 #include <cstring>
 
 #include "rigidlab/world_snapshot.h"
@@ -416,4 +418,48 @@ TEST_CASE("snapshot: a truncated, extended, corrupt or foreign file is a Snapsho
     }
   }
   CHECK(refused > 0);
+}
+
+TEST_CASE("snapshot: a non-finite body state or shape in a file is refused, naming what") {
+  // A step never leaves a body's state non-finite (its firewall puts the body back where the step
+  // began), so a file that holds one was not written by a step: the NaN would have nowhere finite
+  // to go back to. Each value below is written once in the file (an angle and a half width no other
+  // field holds); it is replaced by a NaN and an infinity and the checksum signed again.
+  World w;
+  BodyDef def;
+  def.shape = makeBox(2.75, 1);  // full sizes: corners at ±1.375, ±0.5
+  def.position = {2, 3};
+  def.angle = 0.123456789;
+  w.createBody(def);
+  const std::string bytes = serializeSnapshot(w.snapshot());
+  const auto replaced = [&](double from, double to) {
+    std::string t = bytes;
+    int n = 0;
+    for (size_t i = 30; i + 8 + 8 <= t.size(); ++i) {
+      double x;
+      std::memcpy(&x, t.data() + i, 8);
+      if (x != from) continue;
+      std::memcpy(t.data() + i, &to, 8);
+      ++n;
+    }
+    REQUIRE(n > 0);
+    resign(t);
+    return t;
+  };
+  const auto error = [](const std::string& b) {
+    try {
+      World r;
+      r.restore(deserializeSnapshot(b));
+      r.step(kDt);
+    } catch (const SnapshotError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  for (const double bad : {std::nan(""), std::numeric_limits<double>::infinity()}) {
+    CHECK(error(replaced(0.123456789, bad)) == "snapshot: body 1 has a non-finite position, angle, velocity or mass");
+    CHECK(error(replaced(1.375, bad)) == "snapshot: shape 0 has a non-finite vertex, normal or radius");
+    CHECK(error(replaced(-1.375, bad)) == "snapshot: shape 0 has a non-finite vertex, normal or radius");
+  }
+  CHECK(error(replaced(0.123456789, 0.25)) == "(no error)");  // a finite change is the file's own business
 }

@@ -58,7 +58,9 @@ fuzz() {  # TARGET OPTION... -- SEED_DIR...
   else
     status=1
     echo "fuzz: $target FAILED:"
-    grep -E 'ERROR|SUMMARY|Test unit written|==[0-9]+==|fuzz_world:' "$log" | head -20
+    # the sanitizer's or libFuzzer's report, the engine's own abort message (RIGIDLAB_VERIFY_CACHES)
+    # and the top of the stack, so that a failure seen only in CI's log can be found
+    grep -E 'ERROR|SUMMARY|Test unit written|==[0-9]+==|fuzz_world:|^rigidlab:|^ +#[0-9]+ .* in (rigidlab::|LLVMFuzzerTestOneInput)' "$log" | head -30
     for a in "$work/$target"-*; do
       [ -f "$a" ] || continue
       mkdir -p "${FUZZ_ARTIFACTS:-$root/build-fuzz-artifacts}"

@@ -15,6 +15,7 @@
 // between steps (docs/testing.md "Snapshots"); the step's scratch (solver copies, per-step buffers) is not:
 // steps size and fill it themselves.
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <type_traits>
 
@@ -725,6 +726,23 @@ void check(bool ok, const std::string& what) {
   if (!ok) throw SnapshotError("snapshot: " + what);
 }
 
+bool finite(const Vec2& v) { return std::isfinite(v.x()) && std::isfinite(v.y()); }
+
+bool finiteBody(const Body& b) {
+  for (const double x : {b.xf.q.c, b.xf.q.s, b.angle, b.angular_velocity, b.inv_mass, b.inv_inertia, b.mass, b.inertia,
+                         b.linear_damping, b.angular_damping, b.gravity_scale})
+    if (!std::isfinite(x)) return false;
+  return finite(b.xf.p) && finite(b.center) && finite(b.velocity) && finite(b.local_center);
+}
+
+bool finiteShape(const Shape& g) {
+  if (!std::isfinite(g.radius) || !std::isfinite(g.extent) || !finite(g.center) || !finite(g.ghost1) || !finite(g.ghost2))
+    return false;
+  for (const Vec2& v : g.vertices) if (!finite(v)) return false;
+  for (const Vec2& n : g.normals) if (!finite(n)) return false;
+  return true;
+}
+
 void validate(const WorldImpl& w) {
   try {
     World probe(w.def);  // the settings' own validation
@@ -750,6 +768,11 @@ void validate(const WorldImpl& w) {
   for (uint32_t i = 0; i < nb; ++i) {
     const Body& b = w.bodies[i];
     check(b.id.index == i, "body slot " + std::to_string(i) + " holds id " + std::to_string(b.id.index));
+    // A step leaves every live body's state finite (nan_guard.cpp puts a body back where its step
+    // began), and the firewall can only put a body back to a finite start: a non-finite state read
+    // from a file would stay non-finite for good (fuzz_snapshot).
+    if (w.alive[i])
+      check(finiteBody(b), "body " + std::to_string(b.uid) + " has a non-finite position, angle, velocity or mass");
     for (ShapeId s : b.shapes)
       check(s.index < ns && (!w.alive[i] || (w.shape_alive[s.index] && w.shapes[s.index].body.index == i)),
             "body slot " + std::to_string(i) + " lists a shape that is not its own");
@@ -760,6 +783,7 @@ void validate(const WorldImpl& w) {
     if (!w.shape_alive[i]) continue;
     check(s.body.index < nb && w.alive[s.body.index], "shape " + std::to_string(i) + " belongs to no live body");
     const Shape& g = s.geometry;
+    check(finiteShape(g), "shape " + std::to_string(i) + " has a non-finite vertex, normal or radius");
     check(g.vertices.size() <= kMaxPolygonVertices && g.normals.size() == g.vertices.size(),
           "shape " + std::to_string(i) + " has " + std::to_string(g.vertices.size()) + " vertices and " +
               std::to_string(g.normals.size()) + " normals");
