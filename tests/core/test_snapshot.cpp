@@ -164,6 +164,21 @@ void resign(std::string& file) {
   for (int i = 0; i < 8; ++i) file[file.size() - 8 + i] = static_cast<char>((sum >> (8 * i)) & 0xff);
 }
 
+// Restores the bytes into a new world and steps it once: the error's message ("input: " before an
+// InputError's), or "(no error)".
+std::string restoreError(std::string_view bytes) {
+  try {
+    World w;
+    w.restore(deserializeSnapshot(bytes));
+    w.step(kDt);
+  } catch (const SnapshotError& e) {
+    return std::string(e.what());
+  } catch (const InputError& e) {
+    return std::string("input: ") + e.what();
+  }
+  return std::string("(no error)");
+}
+
 }  // namespace
 
 TEST_CASE("snapshot: restore in memory gives the same bits, step by step, as the run it was taken from") {
@@ -382,29 +397,17 @@ TEST_CASE("snapshot: a truncated, extended, corrupt or foreign file is a Snapsho
   Scene s;
   run(s.w, 30);
   const std::string bytes = serializeSnapshot(s.w.snapshot());
-  const auto error = [](std::string_view b) {
-    try {
-      World w;
-      w.restore(deserializeSnapshot(b));
-      w.step(kDt);
-    } catch (const SnapshotError& e) {
-      return std::string(e.what());
-    } catch (const InputError& e) {
-      return std::string("input: ") + e.what();
-    }
-    return std::string("(no error)");
-  };
-  CHECK(error(bytes) == "(no error)");
-  CHECK(error("") .find("not a rigidlab snapshot") != std::string::npos);
-  CHECK(error("hello world, this is not a snapshot at all").find("not a rigidlab snapshot") != std::string::npos);
-  for (size_t n = 0; n < bytes.size(); n += 1 + n / 7) CHECK(error(bytes.substr(0, n)).starts_with("snapshot: "));
-  CHECK(error(bytes + "x").find("truncated or extended") != std::string::npos);
+  CHECK(restoreError(bytes) == "(no error)");
+  CHECK(restoreError("") .find("not a rigidlab snapshot") != std::string::npos);
+  CHECK(restoreError("hello world, this is not a snapshot at all").find("not a rigidlab snapshot") != std::string::npos);
+  for (size_t n = 0; n < bytes.size(); n += 1 + n / 7) CHECK(restoreError(bytes.substr(0, n)).starts_with("snapshot: "));
+  CHECK(restoreError(bytes + "x").find("truncated or extended") != std::string::npos);
   std::string flipped = bytes;
   flipped[bytes.size() / 2] ^= 0x40;
-  CHECK(error(flipped).find("checksum") != std::string::npos);
+  CHECK(restoreError(flipped).find("checksum") != std::string::npos);
   std::string version = bytes;
   version[18] = 9;
-  CHECK(error(version).find("version 9") != std::string::npos);
+  CHECK(restoreError(version).find("version 9") != std::string::npos);
   // Tampered bytes with a valid checksum: every one is refused or gives a world that steps.
   int refused = 0;
   for (size_t i = 30; i + 8 < bytes.size(); i += 1 + i / 97) {
@@ -412,7 +415,7 @@ TEST_CASE("snapshot: a truncated, extended, corrupt or foreign file is a Snapsho
       std::string t = bytes;
       t[i] = static_cast<char>(t[i] ^ bit);
       resign(t);
-      const std::string e = error(t);
+      const std::string e = restoreError(t);
       CHECK((e == "(no error)" || e.starts_with("snapshot: ") || e.starts_with("input: ")));
       refused += e.starts_with("snapshot: ") ? 1 : 0;
     }
@@ -446,20 +449,10 @@ TEST_CASE("snapshot: a non-finite body state or shape in a file is refused, nami
     resign(t);
     return t;
   };
-  const auto error = [](const std::string& b) {
-    try {
-      World r;
-      r.restore(deserializeSnapshot(b));
-      r.step(kDt);
-    } catch (const SnapshotError& e) {
-      return std::string(e.what());
-    }
-    return std::string("(no error)");
-  };
   for (const double bad : {std::nan(""), std::numeric_limits<double>::infinity()}) {
-    CHECK(error(replaced(0.123456789, bad)) == "snapshot: body 1 has a non-finite position, angle, velocity or mass");
-    CHECK(error(replaced(1.375, bad)) == "snapshot: shape 0 has a non-finite vertex, normal or radius");
-    CHECK(error(replaced(-1.375, bad)) == "snapshot: shape 0 has a non-finite vertex, normal or radius");
+    CHECK(restoreError(replaced(0.123456789, bad)) == "snapshot: body 1 has a non-finite position, angle, velocity or mass");
+    CHECK(restoreError(replaced(1.375, bad)) == "snapshot: shape 0 has a non-finite vertex, normal or radius");
+    CHECK(restoreError(replaced(-1.375, bad)) == "snapshot: shape 0 has a non-finite vertex, normal or radius");
   }
-  CHECK(error(replaced(0.123456789, 0.25)) == "(no error)");  // a finite change is the file's own business
+  CHECK(restoreError(replaced(0.123456789, 0.25)) == "(no error)");  // a finite change is the file's own business
 }
