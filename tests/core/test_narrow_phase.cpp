@@ -143,6 +143,24 @@ TEST_CASE("polygon–polygon") {
     CHECK(m1.points[0].id == m2.points[0].id);
     CHECK(m1.points[1].id == m2.points[1].id);
   }
+  SUBCASE("feature ids do not depend on which box gives the reference face") {
+    // B on A, overlapping half a face. Turned by +1 mrad, A's top face is the axis of least
+    // penetration (normal exactly +y); turned by −1 mrad, B's bottom face is, by 1.5 mm, more
+    // than the tolerance (the normal is B's, tilted). The same two corners touch either way.
+    const Manifold by_a = collideShapes(box, at(0, 0), box, at(1.5, 1.9, 0.001), 0.0);
+    const Manifold by_b = collideShapes(box, at(0, 0), box, at(1.5, 1.9, -0.001), 0.0);
+    REQUIRE(by_a.count == 2);
+    REQUIRE(by_b.count == 2);
+    CHECK(by_a.normal.x() == 0.0);
+    CHECK(by_b.normal.x() == Approx(0.001).epsilon(1e-3));
+    // The point at each end (left: B's corner over A, right: A's corner under B) keeps its id.
+    const auto leftFirst = [](const Manifold& m) {
+      return m.points[0].point.x() < m.points[1].point.x() ? std::pair(m.points[0].id, m.points[1].id)
+                                                            : std::pair(m.points[1].id, m.points[0].id);
+    };
+    CHECK(leftFirst(by_a) == leftFirst(by_b));
+    CHECK(leftFirst(by_a).first != leftFirst(by_a).second);
+  }
   SUBCASE("small box deep inside a large one: pushed out through the nearest face") {
     const Manifold m = collideShapes(makeBox(10, 10), at(0, 0), makeBox(1, 1), at(4.2, 0), 0.0);
     REQUIRE(m.count == 2);

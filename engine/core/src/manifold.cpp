@@ -10,13 +10,16 @@ namespace rigidlab {
 namespace {
 
 // Feature ids. Circle pairs use 0. Polygon–circle: the edge index (face region) or kVertexBit | the
-// vertex index (corner region). Polygon–polygon: reference edge | incident edge << 8 | slot << 16 |
-// flip << 24, where slot 0/1 is the start/end of the incident edge (kept through clipping).
+// vertex index (corner region). Polygon–polygon: vertex of A | vertex of B << 8, the two vertices
+// at the point's end of the reference and incident edges (Box2D v3's ids). They do not depend on
+// which polygon gives the reference face: two boxes pressed face to face, whose separations along
+// either face normal are equal but for a tilt, swap that role back and forth between steps, and
+// ids that changed with it lost the point's warm start at every swap (measured: a pyramid of base
+// 20 swapped on 1 % of its contact-steps, and its top sank 5 % lower than with these ids).
 constexpr uint32_t kVertexBit = 0x100;
 
-uint32_t polygonId(int ref_edge, int inc_edge, int slot, bool flip) {
-  return static_cast<uint32_t>(ref_edge) | static_cast<uint32_t>(inc_edge) << 8 | static_cast<uint32_t>(slot) << 16 |
-         static_cast<uint32_t>(flip) << 24;
+uint32_t polygonId(int vertex_a, int vertex_b) {
+  return static_cast<uint32_t>(vertex_a) | static_cast<uint32_t>(vertex_b) << 8;
 }
 
 int next(int i, size_t n) { return (i + 1) % static_cast<int>(n); }
@@ -261,8 +264,12 @@ void clipPolygons(const WorldPolygon& a, const WorldPolygon& b, const PolygonAxe
     const double separation = normal.dot(p[slot]) - front;
     if (separation <= margin) {
       // Midway between the incident point and its projection on the reference face.
+      // The incident edge runs against the reference edge: its start (slot 0) lies at the
+      // reference edge's end, its end at the reference edge's start.
+      const int ref_vertex = slot == 0 ? next(ref_edge, ref.count) : ref_edge;
+      const int inc_vertex = slot == 0 ? inc_edge : next(inc_edge, inc.count);
       m.points[m.count++] = {p[slot] - 0.5 * separation * normal, separation,
-                             polygonId(ref_edge, inc_edge, slot, axes.flip)};
+                             axes.flip ? polygonId(inc_vertex, ref_vertex) : polygonId(ref_vertex, inc_vertex)};
     }
   }
 }
