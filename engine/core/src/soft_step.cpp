@@ -664,10 +664,32 @@ void colouringOrder(WorldImpl& w) {
 // the same body (static and sleeping bodies do not count), as Box2D v3's constraint graph does, and
 // packs each colour into groups of L lanes, in the contacts' (a, b) order within a colour. Contacts
 // that find no free colour among kColors (a body touching dozens of others) go to serial groups.
+// The colouring is a function of the contacts' pairs of bodies (in order) and of which bodies move,
+// and nothing else: when both are those of the last step, as in a pile at rest, so is the colouring,
+// and it is kept (Box2D v3 keeps its constraint graph between steps instead of colouring again).
+// Only the lanes' contact indices are written again. Checked pair by pair, stopping at the first
+// difference, so a scene whose contacts change pays little for the check.
+bool sameGraph(WorldImpl& w) {
+  auto& last = w.soft_graph_pairs;
+  const auto& refs = w.soft_refs;
+  bool same = w.soft_graph_valid && last.size() == refs.size() && w.soft_graph_moved == w.soft_moved;
+  for (size_t k = 0; same && k < refs.size(); ++k) same = last[k].a == refs[k].a && last[k].b == refs[k].b;
+  if (same) return true;
+  last.resize(refs.size());
+  for (size_t k = 0; k < refs.size(); ++k) last[k] = {refs[k].a, refs[k].b};
+  w.soft_graph_moved = w.soft_moved;
+  w.soft_graph_valid = true;
+  return false;
+}
+
 void buildGroups(WorldImpl& w) {
   constexpr int kColors = 32;
   const auto& solved = w.soft_solved;
   const auto& moved = w.soft_moved;
+  if (sameGraph(w)) {
+    for (size_t k = 0; k < solved.size(); ++k) w.soft_source[w.soft_slot[k]] = solved[k];
+    return;
+  }
   auto& used = w.soft_colors_used;
   used.assign(w.bodies.size(), 0u);
   auto& color = w.soft_color;

@@ -187,6 +187,14 @@ struct WorldImpl {
   std::vector<char> soft_moved;           // per slot: 1 in contact and awake, 2 if also pushed
   std::vector<uint32_t> soft_list;        // the slots with soft_moved ≠ 0
   std::vector<JointBodies> soft_joint_bodies;  // per entry of soft_joints: its bodies' SoftBody
+  // What the last colouring was made from (soft_step.cpp sameGraph): each soft contact's bodies, and
+  // soft_moved; soft_graph_valid is false until the first colouring.
+  struct GraphPair {
+    uint32_t a, b;
+  };
+  std::vector<GraphPair> soft_graph_pairs;
+  std::vector<char> soft_graph_moved;
+  bool soft_graph_valid = false;
   std::vector<Vec2> solve_start_velocity;  // per slot: velocity before the contact solve
   std::vector<double> solve_start_angular_velocity;
   std::vector<double> overlap_time;       // per slot: Σ P τ over its contact points (position_correction)
