@@ -47,6 +47,8 @@ struct Joint {
   JointType type = JointType::Revolute;                            // def.type
   bool enable_limit = false, enable_motor = false;  // def's, copied at prepare
   bool enable_spring = false;  // def.enable_spring with spring_hertz > 0
+  bool alive = false;          // in use (its slot is not free)
+  bool breakable = false;      // def's break force or torque is finite (setJointDef): breakJoints reads no further
   uint32_t a = 0, b = kWorldSlot;  // body slots
   uint32_t c = kWorldSlot, d = kWorldSlot;  // gear: the bodies its joints turn against (below)
   // Solver data, from prepare (world rotation, relative to the centres at the prepare state).
@@ -65,7 +67,6 @@ struct Joint {
 
   JointDef def;  // as created (anchors and axis world at creation); tunables updated by World::updateJoint
   uint32_t generation = 0;
-  bool alive = false;
   bool broken = false;
   // Frames in body coordinates (b's in world coordinates when b is the world).
   Vec2 local_a = Vec2::Zero(), local_b = Vec2::Zero();
@@ -90,6 +91,13 @@ struct Joint {
   Softness linear_soft, angular_soft;
   double impulse_h = 0.0;  // the step (or sub-step) length the impulses were accumulated over [s]
 };
+
+// Sets a joint's definition and what the head of Joint keeps of it.
+inline bool breakableDef(const JointDef& d) { return !std::isinf(d.break_force) || !std::isinf(d.break_torque); }
+inline void setJointDef(Joint& j, const JointDef& d) {
+  j.def = d;
+  j.breakable = breakableDef(d);
+}
 
 // What a joint's prepare reads of one body.
 struct JointBodyPose {

@@ -400,6 +400,7 @@ void io(A& a, Joint& j) {
   a(j.motor_speed);
   a(j.max_motor_torque);
   io(a, j.def);
+  j.breakable = breakableDef(j.def);  // not stored: it follows from the definition
   a(j.generation);
   a(j.alive);
   a(j.broken);

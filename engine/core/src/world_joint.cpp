@@ -194,7 +194,7 @@ JointId World::createJoint(const JointDef& in) {
   if (!dynamic(j.a) && !dynamic(j.b) && !(d.type == JointType::Gear && (dynamic(j.c) || dynamic(j.d))))
     throw InputError("b", "at least one of the joint's bodies must be dynamic (a joint between static or kinematic bodies does nothing)");
 
-  j.def = d;
+  setJointDef(j, d);
   j.alive = true;
   uint32_t index;
   if (!w.free_joints.empty()) {
@@ -280,7 +280,7 @@ void World::updateJoint(JointId id, const JointDef& def) {
     j.local_a = checked.linear_offset;
     j.reference_angle = checked.angular_offset;
   }
-  j.def = checked;
+  setJointDef(j, checked);
   for (uint32_t slot : {j.a, j.b, j.c, j.d})
     if (slot != kWorldSlot) w.wakeIsland(slot);
 }
@@ -349,7 +349,7 @@ void breakJoints(WorldImpl& w) {
   w.joint_breaks.clear();
   for (uint32_t k = 0; k < w.joints.size(); ++k) {
     Joint& j = w.joints[k];
-    if (!j.alive || (std::isinf(j.def.break_force) && std::isinf(j.def.break_torque))) continue;
+    if (!j.alive || !j.breakable) continue;
     Vec2 force;
     double torque;
     jointReaction(j, force, torque);
