@@ -92,8 +92,9 @@ struct Joint {
   double impulse_h = 0.0;  // the step (or sub-step) length the impulses were accumulated over [s]
 };
 
-// Sets a joint's definition and what the head of Joint keeps of it.
+// Whether a definition lets its joint break (a finite break force or torque).
 inline bool breakableDef(const JointDef& d) { return !std::isinf(d.break_force) || !std::isinf(d.break_torque); }
+// Sets a joint's definition and what the head of Joint keeps of it.
 inline void setJointDef(Joint& j, const JointDef& d) {
   j.def = d;
   j.breakable = breakableDef(d);

@@ -52,6 +52,8 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 
 #include "joint_solver.h"
@@ -682,14 +684,10 @@ bool sameGraph(WorldImpl& w) {
   return false;
 }
 
-void buildGroups(WorldImpl& w) {
+void colourGroups(WorldImpl& w) {
   constexpr int kColors = 32;
   const auto& solved = w.soft_solved;
   const auto& moved = w.soft_moved;
-  if (sameGraph(w)) {
-    for (size_t k = 0; k < solved.size(); ++k) w.soft_source[w.soft_slot[k]] = solved[k];
-    return;
-  }
   auto& used = w.soft_colors_used;
   used.assign(w.bodies.size(), 0u);
   auto& color = w.soft_color;
@@ -726,6 +724,23 @@ void buildGroups(WorldImpl& w) {
   // Each colour's first group, then the serial groups' first, then the end.
   w.soft_color_first.resize(kColors + 2);
   for (int c = 0; c <= kColors + 1; ++c) w.soft_color_first[c] = static_cast<uint32_t>(first[c] / L);
+}
+
+void buildGroups(WorldImpl& w) {
+  if (!sameGraph(w)) {
+    colourGroups(w);
+    return;
+  }
+  for (size_t k = 0; k < w.soft_solved.size(); ++k) w.soft_source[w.soft_slot[k]] = w.soft_solved[k];
+#ifdef RIGIDLAB_VERIFY_CACHES
+  // Sanitizer and fuzz builds: the kept colouring must be the one colouring again gives.
+  const std::vector<uint32_t> slot = w.soft_slot, source = w.soft_source, first = w.soft_color_first;
+  colourGroups(w);
+  if (slot != w.soft_slot || source != w.soft_source || first != w.soft_color_first) {
+    std::fprintf(stderr, "rigidlab: the kept colouring of the soft contacts differs from a new one\n");
+    std::abort();
+  }
+#endif
 }
 
 // Asks for the cache lines of the contact `ahead` entries further down the list. The loops over a
