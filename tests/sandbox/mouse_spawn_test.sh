@@ -20,6 +20,10 @@ cat > "$WORK/drive.sh" <<'DRIVE'
 set -u
 source "$4"  # xdotool.sh
 open_window "$1" "$2" "$3"
+# The keys go to the focused window: wait until the sandbox has the focus, or a loaded machine
+# may send Space before it does (then nothing pauses, the scene's own second click lands between
+# ours, and the balls fall).
+xdotool search --sync --name rigidlab windowfocus --sync > /dev/null
 key space                       # pause
 key 2                           # circle tool
 click 424 216                   # (-3, 2)
