@@ -662,10 +662,6 @@ void colouringOrder(WorldImpl& w) {
   for (size_t k = 0; k < n; ++k) order[first[bucket[k]]++] = static_cast<uint32_t>(k);
 }
 
-// Colours the contacts greedily, in colouringOrder's order, so that no two contacts of a colour move
-// the same body (static and sleeping bodies do not count), as Box2D v3's constraint graph does, and
-// packs each colour into groups of L lanes, in the contacts' (a, b) order within a colour. Contacts
-// that find no free colour among kColors (a body touching dozens of others) go to serial groups.
 // The colouring is a function of the contacts' pairs of bodies (in order) and of which bodies move,
 // and nothing else: when both are those of the last step, as in a pile at rest, so is the colouring,
 // and it is kept (Box2D v3 keeps its constraint graph between steps instead of colouring again).
@@ -684,6 +680,10 @@ bool sameGraph(WorldImpl& w) {
   return false;
 }
 
+// Colours the contacts greedily, in colouringOrder's order, so that no two contacts of a colour move
+// the same body (static and sleeping bodies do not count), as Box2D v3's constraint graph does, and
+// packs each colour into groups of L lanes, in the contacts' (a, b) order within a colour. Contacts
+// that find no free colour among kColors (a body touching dozens of others) go to serial groups.
 void colourGroups(WorldImpl& w) {
   constexpr int kColors = 32;
   const auto& solved = w.soft_solved;
@@ -726,6 +726,8 @@ void colourGroups(WorldImpl& w) {
   for (int c = 0; c <= kColors + 1; ++c) w.soft_color_first[c] = static_cast<uint32_t>(first[c] / L);
 }
 
+// The groups of this step's soft contacts: the last step's colouring when sameGraph says it still
+// holds, a new one otherwise.
 void buildGroups(WorldImpl& w) {
   if (!sameGraph(w)) {
     colourGroups(w);
