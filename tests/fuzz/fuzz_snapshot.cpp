@@ -1,11 +1,15 @@
-// libFuzzer target: snapshot files (world_snapshot.h). The bytes are either a whole file (first
-// byte even) or mutations of a valid snapshot of a small world with contacts, joints, a sensor,
-// springs and a sleeping body (first byte odd): pairs of (offset, xor mask), after which the
-// checksum is recomputed, so the mutations reach the reader's checks behind it. The result is
+// libFuzzer target: snapshot files (world_snapshot.h). The bytes are either a whole file (last
+// byte even: FuzzedDataProvider takes integers from the end) or mutations of a valid file: of a
+// snapshot of a small world with contacts, joints, a sensor, springs and a sleeping body (last byte
+// odd, below 128), or of the version 2 file the core tests read, whose contact points have the
+// older layout (odd, from 129). A mutation is pairs of (offset, xor mask),
+// after which the checksum is recomputed, so the mutations reach the reader's checks behind it. The result is
 // deserialized (its application data written back the same), restored into a world and stepped.
 // Only SnapshotError and InputError may come out; nothing may crash or trip a sanitizer.
 #include <fuzzer/FuzzedDataProvider.h>
 
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include "rigidlab/error.h"
@@ -62,6 +66,20 @@ std::string baseSnapshot() {
   return serializeSnapshot(snapshot);
 }
 
+// tests/core/data/snapshot_v2_bouncers.snap (test_snapshot.cpp says what it holds).
+std::string version2Snapshot() {
+  std::FILE* f = std::fopen(RIGIDLAB_SNAPSHOT_V2, "rb");
+  if (!f) {
+    std::fprintf(stderr, "fuzz_snapshot: cannot open %s\n", RIGIDLAB_SNAPSHOT_V2);
+    std::abort();
+  }
+  std::string bytes;
+  char buffer[4096];
+  for (size_t n; (n = std::fread(buffer, 1, sizeof buffer, f)) > 0;) bytes.append(buffer, n);
+  std::fclose(f);
+  return bytes;
+}
+
 uint64_t fnv1a(std::string_view bytes) {
   uint64_t h = 1469598103934665603ull;
   for (unsigned char c : bytes) {
@@ -74,13 +92,14 @@ uint64_t fnv1a(std::string_view bytes) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  static const std::string base = baseSnapshot();
+  static const std::string base = baseSnapshot(), version2 = version2Snapshot();
   FuzzedDataProvider in(data, size);
   std::string bytes;
-  if (in.ConsumeIntegral<uint8_t>() % 2 == 0) {
+  const uint8_t mode = in.ConsumeIntegral<uint8_t>();
+  if (mode % 2 == 0) {
     bytes = in.ConsumeRemainingBytesAsString();
   } else {
-    bytes = base;
+    bytes = mode < 128 ? base : version2;
     constexpr size_t kHeader = 18 + 12;
     while (in.remaining_bytes() >= 3) {
       const size_t at = kHeader + in.ConsumeIntegralInRange<size_t>(0, bytes.size() - kHeader - 9);

@@ -11,7 +11,8 @@ namespace rigidlab {
 // Kept small and packed (no padding between fields): every stage from the narrow phase on walks the
 // whole array, and a pile of 12 500 contacts is several megabytes, so each byte is paid for in cache
 // misses several times per step (callgrind/perf, pyramid of base 100). What only sequential
-// impulses need during their solve (effective masses, the 2×2 K) lives in their SolverContact.
+// impulses need (anchors, effective masses, target velocities, the 2×2 K) lives in their
+// SolverPrepared and SolverContact, not here: the soft step's contacts never need it.
 // Unaligned 2-vectors: an aligned Vec2 pads ContactPoint to 128 bytes and Contact to 336.
 using Vec2u = Eigen::Matrix<double, 2, 1, Eigen::DontAlign>;
 
@@ -20,11 +21,10 @@ struct ContactPoint {
   double separation = 0.0;        // [m] < 0 overlap
   uint32_t id = 0;                // feature id (manifold.h)
   bool persisted = false;         // the same features touched in the previous step
-  Vec2u ra = Vec2::Zero();        // from A's centre of mass to the point [m]
-  Vec2u rb = Vec2::Zero();        // from B's centre of mass to the point [m]
-  double target_velocity = 0.0;   // normal relative velocity the solver aims for (restitution) [m/s]
-  double overlap_time = 0.0;      // how long the point has overlapped this step [s] (position_correction.cpp)
-  double friction = 0.0;          // f_s or f_d, chosen from the slip at the start of the step
+  // Sequential impulses aimed at a separating normal velocity this step (restitution,
+  // contact_solver.cpp): its impulse was an impact's, which says nothing about the next step's
+  // contact force, so the next step does not start from it (narrow_phase.cpp).
+  bool bounced = false;
   double normal_impulse = 0.0;    // accumulated, ≥ 0 [N·s]; the next step starts from it (the soft
                                   //   step's is that of its last sub-step)
   double tangent_impulse = 0.0;   // accumulated, |·| ≤ friction · normal_impulse [N·s]
@@ -49,7 +49,7 @@ struct Contact {
   double static_friction = 0.0;  // combined static friction
   double slop = 0.0;             // penetration left alone by the position pass [m]
 };
-static_assert(sizeof(ContactPoint) <= 128 && sizeof(Contact) <= 320, "packed: see the comment above ContactPoint");
+static_assert(sizeof(ContactPoint) <= 64 && sizeof(Contact) <= 208, "packed: see the comment above ContactPoint");
 
 // Overlap beyond a contact's slop that keeps its bodies awake [m] (sleep.cpp).
 constexpr double kDeepOverlapMargin = 0.005;
@@ -95,6 +95,11 @@ struct SolverContact {
 // What the solver's prepare step finds that only its iterations need, per solved contact: kept out
 // of the Contact, which every stage walks, and copied into the SolverContact.
 struct SolverPrepared {
+  Vec2 ra[2] = {Vec2::Zero(), Vec2::Zero()};  // from A's centre of mass to each point [m]
+  Vec2 rb[2] = {Vec2::Zero(), Vec2::Zero()};  // from B's
+  double target_velocity[2] = {0.0, 0.0};     // normal relative velocity the solver aims for (restitution) [m/s]
+  double overlap_time[2] = {0.0, 0.0};        // how long the point has overlapped this step [s] (position_correction.cpp)
+  double friction[2] = {0.0, 0.0};            // f_s or f_d, chosen from the slip at the start of the step
   double normal_mass[2] = {0.0, 0.0}, tangent_mass[2] = {0.0, 0.0};
   double k11 = 0.0, k12 = 0.0, k22 = 0.0, i11 = 0.0, i12 = 0.0, i22 = 0.0;  // K and K⁻¹ of a block contact
   // For the nonlinear position pass (position_correction.cpp), in body coordinates at detection

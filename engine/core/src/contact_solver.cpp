@@ -27,8 +27,8 @@
 namespace rigidlab {
 namespace {
 
-inline Vec2 relativeVelocity(const Body& a, const Body& b, const ContactPoint& cp) {
-  return b.velocity + cross(b.angular_velocity, cp.rb) - a.velocity - cross(a.angular_velocity, cp.ra);
+inline Vec2 relativeVelocity(const Body& a, const Body& b, const Vec2& ra, const Vec2& rb) {
+  return b.velocity + cross(b.angular_velocity, rb) - a.velocity - cross(a.angular_velocity, ra);
 }
 
 }  // namespace
@@ -64,41 +64,43 @@ void prepare(WorldImpl& w, Contact& c, SolverPrepared& out) {
   }
   for (int i = 0; i < c.count; ++i) {
     ContactPoint& cp = c.points[i];
-    cp.ra = cp.point - a.center;
-    cp.rb = cp.point - b.center;
-    const double rna = cross(cp.ra, n), rnb = cross(cp.rb, n);
+    const Vec2 ra = cp.point - a.center, rb = cp.point - b.center;
+    out.ra[i] = ra;
+    out.rb[i] = rb;
+    const double rna = cross(ra, n), rnb = cross(rb, n);
     const double kn = a.inv_mass + b.inv_mass + a.inv_inertia * rna * rna + b.inv_inertia * rnb * rnb;
-    const double rta = cross(cp.ra, t), rtb = cross(cp.rb, t);
+    const double rta = cross(ra, t), rtb = cross(rb, t);
     const double kt = a.inv_mass + b.inv_mass + a.inv_inertia * rta * rta + b.inv_inertia * rtb * rtb;
     out.normal_mass[i] = kn > 0.0 ? 1.0 / kn : 0.0;
     out.tangent_mass[i] = kt > 0.0 ? 1.0 / kt : 0.0;
 
-    const double vn = relativeVelocity(a, b, cp).dot(n);
+    const double vn = relativeVelocity(a, b, ra, rb).dot(n);
     // How long the point has been overlapping within this step: a new contact since depth / speed
     // before the end; a persisting one all step long, under a force spread over the step, whose
     // position effect is the integrator's weight κ of the velocity gained (position_correction.cpp).
     if (cp.persisted) {
-      cp.overlap_time = resting_weight * w.dt;
+      out.overlap_time[i] = resting_weight * w.dt;
     } else {
-      cp.overlap_time = (vn < 0.0 && cp.separation < 0.0) ? std::min(w.dt, cp.separation / vn) : 0.0;
+      out.overlap_time[i] = (vn < 0.0 && cp.separation < 0.0) ? std::min(w.dt, cp.separation / vn) : 0.0;
     }
     // Relative velocity of the point at the start of the step.
-    const Vec2 v_start = w.start_velocity[c.b] + cross(w.start_angular_velocity[c.b], cp.rb) - w.start_velocity[c.a] -
-                         cross(w.start_angular_velocity[c.a], cp.ra);
-    cp.friction = std::abs(v_start.dot(t)) < w.def.static_friction_speed ? c.static_friction : c.friction;
+    const Vec2 v_start = w.start_velocity[c.b] + cross(w.start_angular_velocity[c.b], rb) - w.start_velocity[c.a] -
+                         cross(w.start_angular_velocity[c.a], ra);
+    out.friction[i] = std::abs(v_start.dot(t)) < w.def.static_friction_speed ? c.static_friction : c.friction;
     if (!w.def.warm_starting) {
       cp.normal_impulse = 0.0;
       cp.tangent_impulse = 0.0;
     }
-    cp.target_velocity = 0.0;
+    double& target = out.target_velocity[i];
+    target = 0.0;
     if (cp.separation > 0.0) {
       // Speculative point: the bodies may close the gap during the next step, not more.
-      cp.target_velocity = -cp.separation / w.dt;
+      target = -cp.separation / w.dt;
       // A body that would travel more than its inner radius into the other bounces now (from the
       // gap), so it cannot pass through; so does one that continuous detection put at the wall.
       const bool fast = w.ccd_hit[c.a] || w.ccd_hit[c.b] ||
                         -vn * w.dt > std::min(w.shapes[c.shape_a].geometry.inradius, w.shapes[c.shape_b].geometry.inradius);
-      if (fast && vn < -w.def.restitution_threshold) cp.target_velocity = -c.restitution * vn;
+      if (fast && vn < -w.def.restitution_threshold) target = -c.restitution * vn;
       if (!fast && vn < -w.def.restitution_threshold && c.restitution > 0.0 && vn * w.dt < -cp.separation) {
         // A bouncing impact: let it happen next step, where restitution is taken at the moment of
         // contact, instead of stopping the body at the surface here.
@@ -111,16 +113,17 @@ void prepare(WorldImpl& w, Contact& c, SolverPrepared& out) {
       // at its start); after the bounce the same acceleration acts for τ:
       //   v_target = −e (v_n − a τ) + a τ = −e v_n + (1 + e) a τ        (docs/design/accuracy.md §3.12)
       const double accel = (vn - v_start.dot(n)) / w.dt;
-      cp.target_velocity = std::max(0.0, -c.restitution * vn + (1.0 + c.restitution) * accel * cp.overlap_time);
+      target = std::max(0.0, -c.restitution * vn + (1.0 + c.restitution) * accel * out.overlap_time[i]);
     }
+    cp.bounced = !(target <= 0.0);
   }
   // Two points: K = [[k11, k12], [k12, k22]], k_ij = 1/m_A + 1/m_B + (r_Ai×n)(r_Aj×n)/I_A + (r_Bi×n)(r_Bj×n)/I_B.
   // Solved together when K is well conditioned; two nearly identical points make it singular, and
   // then the points are solved one by one (Box2D 2.4's rule, condition number ≤ 1000).
   c.block = false;
   if (c.count == 2 && out.normal_mass[0] != 0.0 && out.normal_mass[1] != 0.0) {
-    const ContactPoint &p1 = c.points[0], &p2 = c.points[1];
-    const double rn1a = cross(p1.ra, n), rn1b = cross(p1.rb, n), rn2a = cross(p2.ra, n), rn2b = cross(p2.rb, n);
+    const double rn1a = cross(out.ra[0], n), rn1b = cross(out.rb[0], n), rn2a = cross(out.ra[1], n),
+                 rn2b = cross(out.rb[1], n);
     const double k11 = a.inv_mass + b.inv_mass + a.inv_inertia * rn1a * rn1a + b.inv_inertia * rn1b * rn1b;
     const double k22 = a.inv_mass + b.inv_mass + a.inv_inertia * rn2a * rn2a + b.inv_inertia * rn2b * rn2b;
     const double k12 = a.inv_mass + b.inv_mass + a.inv_inertia * rn1a * rn2a + b.inv_inertia * rn1b * rn2b;
@@ -476,8 +479,8 @@ SolverContact compact(const Contact& c, const SolverPrepared& prep) {
   s.i22 = prep.i22;
   for (int i = 0; i < c.count; ++i) {
     const ContactPoint& cp = c.points[i];
-    s.p[i] = {cp.ra.x(), cp.ra.y(), cp.rb.x(), cp.rb.y(), prep.normal_mass[i], prep.tangent_mass[i],
-              cp.target_velocity, cp.friction, cp.normal_impulse, cp.tangent_impulse};
+    s.p[i] = {prep.ra[i].x(), prep.ra[i].y(), prep.rb[i].x(), prep.rb[i].y(), prep.normal_mass[i], prep.tangent_mass[i],
+              prep.target_velocity[i], prep.friction[i], cp.normal_impulse, cp.tangent_impulse};
   }
   return s;
 }

@@ -380,7 +380,7 @@ class Merge {
         had_id[j] = q.points[j].id;
         // An impact's impulse says nothing about the next step's contact force: only a point
         // that was not bouncing starts from its last impulse.
-        had_impulse[j] = q.points[j].target_velocity <= 0.0;
+        had_impulse[j] = !q.points[j].bounced;
         had_normal_impulse[j] = q.points[j].normal_impulse;
         had_tangent_impulse[j] = q.points[j].tangent_impulse;
       }

@@ -142,15 +142,15 @@ void applyContactDisplacement(WorldImpl& w) {
     return b.isKinematic() && w.kinematic_uid[k] == b.uid &&
            (w.kinematic_jump[k] != Vec2::Zero() || w.kinematic_angular_jump[k] != 0.0);
   };
-  for (uint32_t k : w.solved) {
-    const Contact& c = w.contacts[k];
+  for (size_t j = 0; j < w.solved.size(); ++j) {
+    const Contact& c = w.contacts[w.solved[j]];
+    const SolverPrepared& prepared = w.solver_prepared[j];
     double total = 0.0;
     for (int i = 0; i < c.count; ++i) {
-      const ContactPoint& cp = c.points[i];
-      const double p = cp.normal_impulse;
+      const double p = c.points[i].normal_impulse;
       total += p;
-      w.overlap_time[c.a] += p * cp.overlap_time;
-      w.overlap_time[c.b] += p * cp.overlap_time;
+      w.overlap_time[c.a] += p * prepared.overlap_time[i];
+      w.overlap_time[c.b] += p * prepared.overlap_time[i];
       w.overlap_weight[c.a] += p;
       w.overlap_weight[c.b] += p;
     }

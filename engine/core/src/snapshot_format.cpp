@@ -1,7 +1,7 @@
 // The snapshot file format (world_snapshot.h). Binary, little-endian, versioned:
 //
 //   "RIGIDLAB-SNAPSHOT\n"  magic (18 bytes)
-//   u32 version            kVersion (2); version 1 files are read too
+//   u32 version            kVersion (3); versions 1 and 2 are read too
 //   u64 payload length
 //   payload                the label; since version 2 the application data (u64 length, bytes);
 //                          then the state, field by field (io() below)
@@ -29,8 +29,11 @@ namespace {
 
 constexpr char kMagic[] = "RIGIDLAB-SNAPSHOT\n";
 constexpr size_t kMagicBytes = sizeof kMagic - 1;
-constexpr uint32_t kVersion = 2;
-constexpr uint32_t kOldestVersion = 1;  // version 1: the same without the application data
+// Version 1: version 2 without the application data. Version 2: version 3 with five more numbers
+// per contact point, which only sequential impulses' prepare writes and the step reads no more
+// (io(ContactPoint) below).
+constexpr uint32_t kVersion = 3;
+constexpr uint32_t kOldestVersion = 1;
 
 uint64_t fnv1a(std::string_view bytes) {
   uint64_t h = 1469598103934665603ull;
@@ -81,7 +84,8 @@ class Writer {
 class Reader {
  public:
   static constexpr bool kReading = true;
-  Reader(std::string_view in, size_t base) : in_(in), base_(base) {}
+  Reader(std::string_view in, size_t base, uint32_t version = kVersion) : version(version), in_(in), base_(base) {}
+  const uint32_t version;  // the file's
 
   [[noreturn]] void fail(const std::string& what) const {
     throw SnapshotError("snapshot: " + what + " (at byte " + std::to_string(base_ + pos_) + ")");
@@ -603,11 +607,23 @@ void io(A& a, ContactPoint& p) {
   a(p.separation);
   a(p.id);
   a(p.persisted);
-  io(a, p.ra);
-  io(a, p.rb);
-  a(p.target_velocity);
-  a(p.overlap_time);
-  a(p.friction);
+  bool before_version_3 = false;
+  if constexpr (A::kReading) before_version_3 = a.version < 3;
+  if (before_version_3) {
+    // Versions 1 and 2 stored the prepare's anchors, target velocity, overlap time and friction per
+    // point. The next step computes them again; of them it reads only whether the target velocity
+    // was positive, which is the flag.
+    Vec2u anchor;
+    double target_velocity = 0.0, unused = 0.0;
+    io(a, anchor);
+    io(a, anchor);
+    a(target_velocity);
+    a(unused);
+    a(unused);
+    p.bounced = !(target_velocity <= 0.0);
+  } else {
+    a(p.bounced);
+  }
   a(p.normal_impulse);
   a(p.tangent_impulse);
   a(p.step_normal_impulse);
@@ -873,7 +889,7 @@ WorldSnapshot deserializeSnapshot(std::string_view bytes) {
   tail(sum, "the checksum");
   if (sum != fnv1a(body)) throw SnapshotError("snapshot: corrupt (the checksum does not match)");
 
-  Reader r(body, start);
+  Reader r(body, start, version);
   WorldSnapshot s;
   r(s.label_, "the label");
   if (version >= 2) r(s.app_data_, "the application data");
