@@ -55,7 +55,7 @@ static_assert(sizeof(ContactPoint) <= 64 && sizeof(Contact) <= 208, "packed: see
 constexpr double kDeepOverlapMargin = 0.005;
 
 // Per contact, in the same order as WorldImpl::contacts: what the walks that need only the bodies
-// read (choosing the solvers, islands, sleep), so that they do not load each 312-byte Contact again
+// read (choosing the solvers, islands, sleep), so that they do not load each 200-byte Contact again
 // (a pile of 16 000 contacts is 6 MB, far beyond the cache). Written by the narrow phase.
 struct ContactKey {
   uint32_t a, b;      // body slots

@@ -854,7 +854,7 @@ void validate(const WorldImpl& w) {
 std::string serializeSnapshot(const WorldSnapshot& snapshot) {
   if (!snapshot.state_) throw SnapshotError("snapshot: the snapshot is empty");
   Writer payload;
-  payload.out.reserve(4096 + 600 * snapshot.state_->bodies.size() + 300 * snapshot.state_->contacts.size());
+  payload.out.reserve(4096 + 600 * snapshot.state_->bodies.size() + 200 * snapshot.state_->contacts.size());
   payload(snapshot.label_);
   payload(snapshot.app_data_);
   io(payload, const_cast<WorldImpl&>(*snapshot.state_));  // a Writer only reads

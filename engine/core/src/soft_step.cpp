@@ -746,7 +746,7 @@ void buildGroups(WorldImpl& w) {
 }
 
 // Asks for the cache lines of the contact `ahead` entries further down the list. The loops over a
-// large pile's contacts are bound by loading them (a Contact spans seven lines, and the hardware
+// large pile's contacts are bound by loading them (a Contact spans four or five lines, and the hardware
 // prefetcher does not keep up while the loop also writes lanes and tallies in colour order):
 // prepare took 17 % of the soft step's own time waiting for one field (perf). Always inlined: GCC
 // finds a function that only prefetches free of side effects and drops the calls.
