@@ -1,12 +1,13 @@
 // rigidlab bench: time benchmark scenes (bench_scenes.cpp, bench_suite.cpp), each in its own
 // process (bench_run.cpp), and compare them with other engines (bench_compare.cpp).
 // Benchmarks, never tests: timings depend on the machine and its load; compare ratios measured
-// in one run (--compare runs the peers right after; --v3 alternates with Box2D v3).
+// in one run (--compare and --v3 alternate rigidlab with the other engines, scene by scene).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 
 #include "bench_compare.h"
 #include "bench_run.h"
@@ -20,8 +21,8 @@ namespace rigidlab::app {
 namespace {
 
 constexpr const char* kHelp = R"(usage: rigidlab bench [SCENE...] [--reps R] [--steps N] [--json] [--compare] [--peers DIR]
-                      [--v3 PROGRAM] [--v3-threads T] [--solver NAME] [--substeps N] [--iterations N]
-                      [--impacts NAME] [--threads N]
+                      [--v3 PROGRAM] [--v3-threads T] [--peer-timeout S] [--solver NAME]
+                      [--substeps N] [--iterations N] [--impacts NAME] [--threads N]
 
 Times benchmark scenes (all of them without SCENE arguments), each in its own process. Per scene:
 median and p95 ms per step (only World::step is timed), setup time, the per-stage breakdown,
@@ -29,19 +30,25 @@ contacts, calls into Lua, peak memory, and the peers' stability metrics.
   --reps R      repetitions, each on a fresh world (default 3)
   --steps N     steps per repetition (default: the scene's own, listed below)
   --json        one JSON line per scene, in the peer programs' format plus rigidlab's fields
-  --compare     then run the peers (Box2D 2.4.1 and Chipmunk 7.0.3, DIR/run.sh, default
-                ../shared/peers beside the repository) and print rigidlab/peer ratios per scene
-  --peers DIR   where the peer benchmark is
-  --v3 PROGRAM  compare with Box2D v3 instead: an existing build of ../shared/peers/v3/bench_v3.c
-                (--compare alone uses RIGIDLAB_V3_BENCH when set), run on 1 and T threads, alternated
-                with rigidlab scene by scene for R rounds (--reps); prints the medians with their
-                spread [min-max], the ratios and both engines' quality figures
+  --compare     against Box2D 2.4.1 and Chipmunk 7.0.3 (the Debian packages; the peer programs of
+                DIR, built first) and Box2D v3 when a program is given (--v3, or RIGIDLAB_V3_BENCH):
+                every scene for R rounds (--reps), each round alternating rigidlab with every other
+                engine (one five times slower than rigidlab runs in the first round only); prints
+                each one's median ms per step with the spread [min-max] of the rounds, the ratios
+                rigidlab/peer and every engine's quality figures side by side
+  --peers DIR   the peer programs' sources (default: engine/peers of the repository)
+  --v3 PROGRAM  an existing build of Box2D v3's peer program (bench_v3.c, built by hand outside the
+                repository; docs/performance.md): run on 1 and T threads as above; alone, without
+                --compare, against Box2D v3 only
   --v3-threads T  Box2D v3's second configuration (default 2; 1 skips it)
+  --peer-timeout S  stop one run of a peer after S seconds (default 600; 0: never) and report it
+                as at least S over its steps per step (Chipmunk's joint_grid comes apart and
+                takes about 20 minutes)
   --solver NAME contact solver: auto (default), sequential_impulses or soft_step
-  --substeps N  soft step sub-steps per step (default 8); with --v3 a list such as 8,5 runs
-                rigidlab at each (a row each, alternated with v3 in every round), so that the
-                default and the sub-steps at which rigidlab's results are as good as v3's are
-                compared in one run
+  --substeps N  soft step sub-steps per step (default 8); with --compare or --v3 a list such as
+                8,5 runs rigidlab at each (a row each, alternated with the peers in every round),
+                so that the default and the sub-steps at which rigidlab's results are as good as a
+                peer's are compared in one run
   --iterations N  sequential impulses velocity passes per step (default 10)
   --impacts NAME  located (default: impacts of small free islands located inside the step while
                 at most 128 bodies are awake) or per_step (every impact once per step), so that
@@ -52,7 +59,7 @@ contacts, calls into Lua, peak memory, and the peers' stability metrics.
 scenes:
 )";
 
-// --substeps: one count, or (for --v3) a comma-separated list; each 1…64.
+// --substeps: one count, or (for --compare and --v3) a comma-separated list; each 1…64.
 std::vector<int> substepList(const std::optional<std::string>& text, int fallback) {
   if (!text) return {fallback};
   std::vector<int> out;
@@ -73,7 +80,7 @@ std::vector<int> substepList(const std::optional<std::string>& text, int fallbac
 }  // namespace
 
 int benchCommand(const std::vector<std::string>& argv) {
-  const Args args("bench", argv, {"reps", "steps", "peers", "v3", "v3-threads", "solver", "substeps", "iterations", "impacts", "threads"}, {"json", "compare"});
+  const Args args("bench", argv, {"reps", "steps", "peers", "v3", "v3-threads", "peer-timeout", "solver", "substeps", "iterations", "impacts", "threads"}, {"json", "compare"});
   if (args.help()) {
     std::fputs(kHelp, stdout);
     for (const BenchScene& s : benchScenes()) std::printf("  %-12s %s\n", s.name.c_str(), s.description.c_str());
@@ -112,18 +119,33 @@ int benchCommand(const std::vector<std::string>& argv) {
   const int v3_threads = static_cast<int>(args.integer("v3-threads", 1).value_or(2));
   if (args.value("v3-threads") && !args.value("v3") && !args.flag("compare"))
     throw UsageError("bench: --v3-threads needs --v3 PROGRAM (or --compare with RIGIDLAB_V3_BENCH set)");
+  if (args.value("peers") && !args.flag("compare")) throw UsageError("bench: --peers DIR is for --compare");
+  const int peer_timeout = static_cast<int>(args.integer("peer-timeout", 0).value_or(600));
+  if (args.value("peer-timeout") && !args.value("v3") && !args.flag("compare"))
+    throw UsageError("bench: --peer-timeout is for comparisons (--compare, --v3)");
   std::optional<std::string> v3 = args.value("v3");
   if (!v3 && args.flag("compare"))
     if (const char* env = std::getenv("RIGIDLAB_V3_BENCH"); env && *env) v3 = env;
-  if (v3) {
+  if (v3 || args.flag("compare")) {
+    std::vector<PeerProgram> peers;
+    if (v3) peers = v3Programs(*v3, v3_threads);
+    if (args.flag("compare")) {
+      const std::filesystem::path dir =
+          args.value("peers") ? std::filesystem::path(*args.value("peers")) : lua::scriptsDirectory().parent_path() / "engine" / "peers";
+      // Built beside the other temporary files, in a folder of the sources' own (tests use fake peers).
+      char folder[48];
+      std::snprintf(folder, sizeof folder, "rigidlab-peers-%016zx", std::hash<std::string>{}(std::filesystem::absolute(dir).string()));
+      for (PeerProgram& p : buildPeerPrograms(dir, std::filesystem::temp_directory_path() / folder))
+        peers.push_back(std::move(p));
+    }
     std::vector<BenchScene> scenes;
     for (const BenchScene* s : selected) {
       scenes.push_back(*s);
       if (steps) scenes.back().steps = static_cast<int>(*steps);
     }
-    return compareV3(scenes, *v3, reps, v3_threads, substeps, json);
+    return comparePeers(scenes, peers, reps, substeps, peer_timeout, json);
   }
-  if (substeps.size() > 1) throw UsageError("bench: a list of --substeps is for comparisons with --v3; give one number");
+  if (substeps.size() > 1) throw UsageError("bench: a list of --substeps is for comparisons (--compare, --v3); give one number");
   std::vector<JsonValue> results;
   for (size_t i = 0; i < selected.size(); ++i) {
     const BenchScene* s = selected[i];
@@ -159,11 +181,6 @@ int benchCommand(const std::vector<std::string>& argv) {
     } else {
       std::printf("Lua spring / built-in spring: %.2fx per step; %.2f us per Lua force evaluation\n", ratio, per_call_us);
     }
-  }
-  if (args.flag("compare")) {
-    const std::filesystem::path peers =
-        args.value("peers") ? std::filesystem::path(*args.value("peers")) : lua::scriptsDirectory().parent_path().parent_path() / "shared" / "peers";
-    return comparePeers(results, peers);
   }
   return kExitOk;
 }

@@ -4,8 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
-#include <map>
+#include <stdexcept>
+
+#include <sys/wait.h>
 
 #include "bench_run.h"
 #include "cli.h"
@@ -13,11 +16,6 @@
 
 namespace rigidlab::app {
 namespace {
-
-// Key "pyramid/40" of a result line.
-std::string key(const JsonValue& r) {
-  return r.str("scene").value_or("?") + "/" + std::to_string(static_cast<long>(r.num("n").value_or(0)));
-}
 
 std::string stability(const JsonValue& r) {
   const JsonValue* m = r.get("metrics");
@@ -44,49 +42,8 @@ std::string stability(const JsonValue& r) {
   return buf;
 }
 
-}  // namespace
-
-int comparePeers(const std::vector<JsonValue>& ours, const std::filesystem::path& peers) {
-  const std::filesystem::path script = peers / "run.sh";
-  if (!std::filesystem::exists(script)) {
-    std::fprintf(stderr, "bench: no peer benchmark at %s (use --peers DIR)\n", script.c_str());
-    return kExitUsage;
-  }
-  std::fprintf(stderr, "bench: running the peers (%s, about 3 minutes) ...\n", script.c_str());
-  const std::string command = "'" + script.string() + "' /tmp/rigidlab-peers 2>/dev/null";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) {
-    std::fprintf(stderr, "bench: cannot run %s\n", script.c_str());
-    return kExitSceneError;
-  }
-  std::map<std::string, std::map<std::string, JsonValue>> peer;  // key → engine → line
-  char buf[1 << 16];
-  while (std::fgets(buf, sizeof buf, pipe)) {
-    if (const auto v = parseJson(std::string(buf, std::strlen(buf) - (std::strchr(buf, '\n') ? 1 : 0))))
-      peer[key(*v)][v->str("engine").value_or("?")] = *v;
-  }
-  pclose(pipe);
-  std::printf("\n%-16s %10s %10s %10s %9s %9s   %-28s %-28s %-28s\n", "scene", "rigidlab", "Box2D 2.4", "Chipmunk",
-              "/Box2D", "/Chipmunk", "rigidlab", "Box2D 2.4", "Chipmunk");
-  for (const JsonValue& r : ours) {
-    const std::string k = key(r);
-    if (!peer.count(k)) continue;
-    const auto& p = peer[k];
-    const double ms = r.num("ms_median").value_or(NAN);
-    const auto peerMs = [&](const char* e) { return p.count(e) ? p.at(e).num("ms_median").value_or(NAN) : NAN; };
-    const auto peerStab = [&](const char* e) { return p.count(e) ? stability(p.at(e)) : std::string(); };
-    std::printf("%-16s %8.3fms %8.3fms %8.3fms %8.2fx %8.2fx   %-28s %-28s %-28s\n", k.c_str(), ms, peerMs("box2d"),
-                peerMs("chipmunk"), ms / peerMs("box2d"), ms / peerMs("chipmunk"), stability(r).c_str(),
-                peerStab("box2d").c_str(), peerStab("chipmunk").c_str());
-  }
-  return kExitOk;
-}
-
-
-namespace {
-
 // The peer program's arguments for one of rigidlab's scenes, or "" if it has no such scene.
-std::string v3Arguments(const BenchScene& s) {
+std::string peerArguments(const BenchScene& s) {
   const std::string steps = " --steps=" + std::to_string(s.steps);
   if (isSuiteScene(s.kind)) return s.kind + steps;
   if (s.kind == "pyramid" || s.kind == "stack" || s.kind == "rain") return s.kind + " --n=" + std::to_string(s.n) + steps;
@@ -95,13 +52,18 @@ std::string v3Arguments(const BenchScene& s) {
   return "";
 }
 
-std::optional<JsonValue> runProgram(const std::string& command) {
-  FILE* pipe = popen((command + " 2>/dev/null").c_str(), "r");
+// The program's last output line as JSON; `timed_out` tells whether it was stopped after
+// `timeout_s` seconds (0: no limit) by coreutils' timeout, which exits with 124 then.
+std::optional<JsonValue> runProgram(const std::string& command, int timeout_s, bool& timed_out) {
+  const std::string limited = timeout_s > 0 ? "timeout " + std::to_string(timeout_s) + " " + command : command;
+  FILE* pipe = popen((limited + " 2>/dev/null").c_str(), "r");
+  timed_out = false;
   if (!pipe) return std::nullopt;
   std::string out;
   char buf[1 << 16];
   while (std::fgets(buf, sizeof buf, pipe)) out += buf;
-  pclose(pipe);
+  const int status = pclose(pipe);
+  timed_out = timeout_s > 0 && WIFEXITED(status) && WEXITSTATUS(status) == 124;
   while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
   const size_t last = out.rfind('\n');
   return parseJson(last == std::string::npos ? out : out.substr(last + 1));
@@ -128,9 +90,12 @@ std::string quality(const JsonValue& r) {
   return out;
 }
 
+constexpr double kSlowPeer = 5.0;
+
 struct Series {
   std::vector<double> ms;
   std::optional<JsonValue> last;
+  bool timed_out = false;  // stopped by --peer-timeout: no result, and not run again
   void add(const std::optional<JsonValue>& r) {
     if (!r || r->get("error")) return;
     ms.push_back(r->num("ms_median").value_or(NAN));
@@ -148,32 +113,35 @@ struct Series {
 
 }  // namespace
 
-int compareV3(const std::vector<BenchScene>& scenes, const std::filesystem::path& program, int rounds, int threads,
-              const std::vector<int>& substeps, bool json) {
-  if (!std::filesystem::exists(program)) {
-    std::fprintf(stderr, "bench: no Box2D v3 peer program at %s (--v3 PATH or RIGIDLAB_V3_BENCH)\n", program.c_str());
-    return kExitUsage;
-  }
-  const std::string quoted = "'" + program.string() + "' ";
-  if (!json)
-  {
-    // With --v3-threads 1 there is one v3 column and one ratio.
-    const std::string many_head = "v3 " + std::to_string(threads) + " threads", many_ratio = "/v3 " + std::to_string(threads) + "T";
-    if (threads > 1)
-      std::printf("%-14s %-26s %-26s %-26s %7s %7s   %-44s %s\n", "scene", "rigidlab ms [min-max]", "v3 1 thread",
-                  many_head.c_str(), "/v3", many_ratio.c_str(), "rigidlab", "Box2D v3");
-    else
-      std::printf("%-14s %-26s %-26s %7s   %-44s %s\n", "scene", "rigidlab ms [min-max]", "v3 1 thread", "/v3",
-                  "rigidlab", "Box2D v3");
-  }
+std::vector<PeerProgram> buildPeerPrograms(const std::filesystem::path& dir, const std::filesystem::path& build_dir) {
+  const std::filesystem::path script = dir / "run.sh";
+  if (!std::filesystem::exists(script))
+    throw UsageError("bench: no peer programs at " + dir.string() + " (no run.sh there; use --peers DIR)");
+  std::fprintf(stderr, "bench: building the peer programs (%s) in %s ...\n", dir.c_str(), build_dir.c_str());
+  const std::string command = "'" + script.string() + "' --build-only '" + build_dir.string() + "' >&2";
+  if (std::system(command.c_str()) != 0) throw std::runtime_error("bench: building the peer programs failed: " + command);
+  return {{"Box2D 2.4.1", (build_dir / "box2d_bench").string(), ""},
+          {"Chipmunk 7", (build_dir / "chipmunk_bench").string(), ""}};
+}
+
+std::vector<PeerProgram> v3Programs(const std::filesystem::path& program, int threads) {
+  if (!std::filesystem::exists(program))
+    throw UsageError("bench: no Box2D v3 peer program at " + program.string() + " (--v3 PATH or RIGIDLAB_V3_BENCH)");
+  std::vector<PeerProgram> out{{"Box2D v3, 1 thread", program.string(), ""}};
+  if (threads > 1)
+    out.push_back({"Box2D v3, " + std::to_string(threads) + " threads", program.string(), " --workers=" + std::to_string(threads)});
+  return out;
+}
+
+int comparePeers(const std::vector<BenchScene>& scenes, const std::vector<PeerProgram>& peers, int rounds,
+                 const std::vector<int>& substeps, int timeout_s, bool json) {
   for (const BenchScene& s : scenes) {
-    const std::string args = v3Arguments(s);
+    const std::string args = peerArguments(s);
     if (args.empty()) {
-      if (!json) std::printf("%-14s (Box2D v3 has no such scene)\n", s.name.c_str());
+      if (!json) std::printf("%s: the peers have no such scene\n", s.name.c_str());
       continue;
     }
-    std::vector<Series> ours(substeps.size());
-    Series one, many;
+    std::vector<Series> ours(substeps.size()), theirs(peers.size());
     WorldDef& settings = benchSettings();
     const int default_substeps = settings.substeps;
     for (int r = 0; r < rounds; ++r) {  // alternated, so that a change in load hits every configuration
@@ -183,36 +151,79 @@ int compareV3(const std::vector<BenchScene>& scenes, const std::filesystem::path
         ours[k].add(parseJson(runIsolated(s, 1)));
       }
       settings.substeps = default_substeps;
-      one.add(runProgram(quoted + args + " --reps=1"));
-      if (threads > 1) many.add(runProgram(quoted + args + " --reps=1 --workers=" + std::to_string(threads)));
+      double slowest_ours = 0.0;
+      for (const Series& x : ours) slowest_ours = std::max(slowest_ours, x.mid());
+      for (size_t p = 0; p < peers.size(); ++p) {
+        // A peer five times slower than every rigidlab row runs in the first round only: the
+        // load's ±20 % cannot change what its ratio says, and its rounds would take most of the run.
+        if (theirs[p].timed_out || (r > 0 && theirs[p].last && theirs[p].mid() > kSlowPeer * slowest_ours)) continue;
+        bool timed_out = false;
+        theirs[p].add(runProgram("'" + peers[p].program + "' " + args + " --reps=1" + peers[p].extra, timeout_s, timed_out));
+        theirs[p].timed_out = timed_out;
+      }
     }
-    if (!one.last) {
-      std::fprintf(stderr, "bench: %s: the Box2D v3 program gave no result (%s%s)\n", s.name.c_str(), quoted.c_str(),
-                   args.c_str());
-      continue;
-    }
-    for (size_t k = 0; k < substeps.size(); ++k) {
-      const Series& mine = ours[k];
-      const double r1 = mine.mid() / one.mid(), r2 = mine.mid() / many.mid();
-      if (json) {
-        std::printf("{\"engine\": \"rigidlab\", \"compare\": \"box2d_v3\", \"name\": \"%s\", \"substeps\": %d, "
-                    "\"rounds\": %d, \"ms\": %s, \"ms_min\": %s, \"ms_max\": %s, \"v3_ms\": %s, \"v3_ms_min\": %s, "
-                    "\"v3_ms_max\": %s, \"v3_threads\": %d, \"v3_mt_ms\": %s, \"v3_mt_ms_min\": %s, \"v3_mt_ms_max\": %s, "
-                    "\"ratio\": %s, \"ratio_mt\": %s, \"metrics\": %s, \"v3_metrics\": %s}\n",
-                    s.name.c_str(), substeps[k], rounds, fmt(mine.mid()).c_str(), fmt(mine.lo()).c_str(),
-                    fmt(mine.hi()).c_str(), fmt(one.mid()).c_str(), fmt(one.lo()).c_str(), fmt(one.hi()).c_str(), threads,
-                    fmt(many.mid()).c_str(), fmt(many.lo()).c_str(), fmt(many.hi()).c_str(), fmt(r1).c_str(),
-                    fmt(r2).c_str(), mine.last && mine.last->get("metrics") ? mine.last->get("metrics")->dump().c_str() : "{}",
-                    one.last->get("metrics") ? one.last->get("metrics")->dump().c_str() : "{}");
-      } else {
-        const std::string label = substeps.size() > 1 ? s.name + " @" + std::to_string(substeps[k]) : s.name;
-        const std::string ours_quality = mine.last ? quality(*mine.last) : "", v3_quality = quality(*one.last);
-        if (threads > 1)
-          std::printf("%-14s %-26s %-26s %-26s %6.2fx %6.2fx   %-44s %s\n", label.c_str(), mine.spread().c_str(),
-                      one.spread().c_str(), many.spread().c_str(), r1, r2, ours_quality.c_str(), v3_quality.c_str());
-        else
-          std::printf("%-14s %-26s %-26s %6.2fx   %-44s %s\n", label.c_str(), mine.spread().c_str(),
-                      one.spread().c_str(), r1, ours_quality.c_str(), v3_quality.c_str());
+    // A peer stopped by the time limit took at least the limit over the steps per step.
+    const double at_least_ms = 1000.0 * timeout_s / s.steps;
+    for (size_t p = 0; p < peers.size(); ++p)
+      if (!theirs[p].last && !theirs[p].timed_out)
+        std::fprintf(stderr, "bench: %s: %s gave no result ('%s' %s --reps=1%s)\n", s.name.c_str(), peers[p].label.c_str(),
+                     peers[p].program.c_str(), args.c_str(), peers[p].extra.c_str());
+    const auto metrics = [](const Series& x) {
+      return x.last && x.last->get("metrics") ? x.last->get("metrics")->dump() : std::string("{}");
+    };
+    if (json) {
+      for (size_t k = 0; k < substeps.size(); ++k) {
+        std::string list;
+        for (size_t p = 0; p < peers.size(); ++p) {
+          const Series& x = theirs[p];
+          if (x.timed_out) {
+            list += std::string(p ? ", " : "") + "{\"engine\": \"" + peers[p].label + "\", \"timed_out_s\": " +
+                    std::to_string(timeout_s) + ", \"ms_at_least\": " + fmt(at_least_ms) +
+                    ", \"ratio_at_most\": " + fmt(ours[k].mid() / at_least_ms) + "}";
+            continue;
+          }
+          list += std::string(p ? ", " : "") + "{\"engine\": \"" + peers[p].label + "\", \"ms\": " + fmt(x.mid()) +
+                  ", \"ms_min\": " + fmt(x.lo()) + ", \"ms_max\": " + fmt(x.hi()) +
+                  ", \"rounds\": " + std::to_string(x.ms.size()) +
+                  ", \"ratio\": " + fmt(ours[k].mid() / x.mid()) + ", \"metrics\": " + metrics(x) + "}";
+        }
+        std::printf("{\"engine\": \"rigidlab\", \"name\": \"%s\", \"substeps\": %d, \"rounds\": %d, \"ms\": %s, "
+                    "\"ms_min\": %s, \"ms_max\": %s, \"metrics\": %s, \"peers\": [%s]}\n",
+                    s.name.c_str(), substeps[k], rounds, fmt(ours[k].mid()).c_str(), fmt(ours[k].lo()).c_str(),
+                    fmt(ours[k].hi()).c_str(), metrics(ours[k]).c_str(), list.c_str());
+      }
+    } else {
+      // A block per scene: rigidlab's rows, then each peer with rigidlab ÷ peer for each of
+      // rigidlab's rows in their order.
+      std::printf("\n%s (median ms per step of %d round%s [min-max])\n", s.name.c_str(), rounds, rounds == 1 ? "" : "s");
+      for (size_t k = 0; k < substeps.size(); ++k) {
+        const std::string label = "rigidlab, " + std::to_string(substeps[k]) + " sub-steps";
+        std::printf("  %-22s %-28s %-20s %s\n", label.c_str(), ours[k].spread().c_str(), "",
+                    ours[k].last ? quality(*ours[k].last).c_str() : "no result");
+      }
+      for (size_t p = 0; p < peers.size(); ++p) {
+        const Series& x = theirs[p];
+        if (x.timed_out) {
+          std::string ratios = "rigidlab/peer";
+          for (size_t k = 0; k < substeps.size(); ++k) {
+            char buf[32];
+            std::snprintf(buf, sizeof buf, "%s < %.2f", k ? "," : "", ours[k].mid() / at_least_ms);
+            ratios += buf;
+          }
+          char took[64];
+          std::snprintf(took, sizeof took, "> %.3f (stopped after %d s)", at_least_ms, timeout_s);
+          std::printf("  %-22s %-28s %-20s\n", peers[p].label.c_str(), took, ratios.c_str());
+          continue;
+        }
+        std::string ratios = "rigidlab/peer";
+        for (size_t k = 0; k < substeps.size(); ++k) {
+          char buf[32];
+          std::snprintf(buf, sizeof buf, "%s %.2f", k ? "," : "", ours[k].mid() / x.mid());
+          ratios += buf;
+        }
+        const std::string label = peers[p].label + (x.last && x.ms.size() == 1 && rounds > 1 ? " (1 round)" : "");
+        std::printf("  %-22s %-28s %-20s %s\n", label.c_str(), x.last ? x.spread().c_str() : "no result",
+                    x.last ? ratios.c_str() : "", x.last ? quality(*x.last).c_str() : "");
       }
     }
     std::fflush(stdout);

@@ -3,23 +3,39 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "bench_scenes.h"
-#include "json_value.h"
 
 namespace rigidlab::app {
 
-// Box2D 2.4.1 and Chipmunk 7 (DIR/run.sh builds and runs them), after rigidlab's own results.
-int comparePeers(const std::vector<JsonValue>& ours, const std::filesystem::path& peers);
+// One configuration of another engine: a peer program of the command line of
+// engine/peers/scenes.h (Box2D 2.4.1, Chipmunk 7, Box2D v3) and the arguments it is run with.
+struct PeerProgram {
+  std::string label;    // "Box2D v3, 2 threads"
+  std::string program;  // path
+  std::string extra;    // e.g. " --workers=2"
+};
 
-// Box2D v3 through an existing program of the peers' command line (docs/performance.md), one
-// thread and `threads` > 1, alternated with rigidlab scene by scene for `rounds` rounds; prints
-// each engine's median over the rounds with the spread, the ratios and the quality figures side by
-// side. rigidlab runs once per entry of `substeps` in each round (a row each), so that its default
-// and the sub-steps at which its results are as good as v3's are compared in one alternated run.
-// Scenes the program does not know are reported as such.
-int compareV3(const std::vector<BenchScene>& scenes, const std::filesystem::path& program, int rounds, int threads,
-              const std::vector<int>& substeps, bool json);
+// Box2D 2.4.1 and Chipmunk 7 from the peer programs' sources in `dir` (engine/peers), built by its
+// run.sh into `build_dir` (it installs the two Debian packages when they are missing). Throws a
+// UsageError when `dir` has no run.sh, a std::runtime_error when the build fails.
+std::vector<PeerProgram> buildPeerPrograms(const std::filesystem::path& dir, const std::filesystem::path& build_dir);
+
+// Box2D v3 through an existing build of the peers' bench_v3.c: one thread, and `threads` > 1.
+std::vector<PeerProgram> v3Programs(const std::filesystem::path& program, int threads);
+
+// Each scene for `rounds` rounds, every round alternating rigidlab (once per entry of `substeps`, a
+// row each, so that its default and the sub-steps at which its results are as good as a peer's are
+// compared in one run) with every peer program, so that a change in the machine's load hits every
+// configuration; a peer five times slower than every rigidlab row runs in the first round only, and
+// one run of a peer that takes more than `timeout_s` seconds (0: no limit) is stopped, reported as
+// at least that time over the steps a step, and not run again.
+// Prints each configuration's median over the rounds with its spread [min-max], the
+// ratios rigidlab ÷ peer and every engine's quality figures. Scenes the peers do not have are
+// reported as such.
+int comparePeers(const std::vector<BenchScene>& scenes, const std::vector<PeerProgram>& peers, int rounds,
+                 const std::vector<int>& substeps, int timeout_s, bool json);
 
 }  // namespace rigidlab::app
