@@ -130,8 +130,12 @@ int benchCommand(const std::vector<std::string>& argv) {
     std::vector<PeerProgram> peers;
     if (v3) peers = v3Programs(*v3, v3_threads);
     if (args.flag("compare")) {
+      // By default the repository's engine/peers: the build tree's scripts folder is a link to the
+      // repository's scripts/, so the link resolved leads there.
+      std::error_code error;
+      const std::filesystem::path scripts = std::filesystem::canonical(lua::scriptsDirectory(), error);
       const std::filesystem::path dir =
-          args.value("peers") ? std::filesystem::path(*args.value("peers")) : lua::scriptsDirectory().parent_path() / "engine" / "peers";
+          args.value("peers") ? std::filesystem::path(*args.value("peers")) : scripts.parent_path() / "engine" / "peers";
       // Built beside the other temporary files, in a folder of the sources' own (tests use fake peers).
       char folder[48];
       std::snprintf(folder, sizeof folder, "rigidlab-peers-%016zx", std::hash<std::string>{}(std::filesystem::absolute(dir).string()));
