@@ -4,7 +4,9 @@
 #include <lua5.4/lua.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <set>
 #include <stdexcept>
 
@@ -19,6 +21,7 @@ const char* groupName(Group g) {
     case Group::Impact: return "impact";
     case Group::Contact: return "contact";
     case Group::Sanity: return "sanity";
+    case Group::Mechanism: return "mechanism";
   }
   return "?";
 }
@@ -30,8 +33,9 @@ std::optional<double> defaultOrder(const std::string& integrator) {
 }
 
 // A plain Lua state that ran the problem file once. Only the libraries a table of numbers and an
-// energy function need; `require` returns an empty table, so module-level code that only stores
-// a module (local check = require "check") still runs.
+// energy function need. `require` loads the pure Lua modules of the scripts folder (elliptic, for
+// the closed forms of mechanisms) into this state too; a name that is not a file there answers an
+// empty table, so module-level code that only stores a module (local x = require "forces.x") runs.
 class ProblemScript {
  public:
   ProblemScript(const std::string& source, const std::string& name) : L_(luaL_newstate()), name_(name) {
@@ -46,10 +50,7 @@ class ProblemScript {
       lua_pushnil(L_);
       lua_setglobal(L_, unsafe);
     }
-    lua_pushcfunction(L_, [](lua_State* L) -> int {
-      lua_newtable(L);
-      return 1;
-    });
+    lua_pushcfunction(L_, requireModule);
     lua_setglobal(L_, "require");
     lua_pushcfunction(L_, [](lua_State*) -> int { return 0; });
     lua_setglobal(L_, "print");
@@ -69,6 +70,47 @@ class ProblemScript {
       throw std::runtime_error(popError());
   }
   static constexpr lua_Integer kTickBudget = 100;  // × 1e6 instructions (about 0.3 s)
+
+  // require(name): scripts/<name with dots as folders>.lua, run once and kept.
+  static int requireModule(lua_State* L) {
+    const std::string name = luaL_checkstring(L, 1);
+    lua_getfield(L, LUA_REGISTRYINDEX, "rigidlab.accuracy.modules");
+    if (lua_isnil(L, -1)) {
+      lua_pop(L, 1);
+      lua_newtable(L);
+      lua_pushvalue(L, -1);
+      lua_setfield(L, LUA_REGISTRYINDEX, "rigidlab.accuracy.modules");
+    }
+    lua_getfield(L, -1, name.c_str());
+    if (!lua_isnil(L, -1)) return 1;
+    lua_pop(L, 1);
+    const bool plain = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+      return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.';
+    }) && name.find("..") == std::string::npos && name.front() != '.';
+    std::string relative = name;
+    std::replace(relative.begin(), relative.end(), '.', '/');
+    const std::filesystem::path file = lua::scriptsDirectory() / (relative + ".lua");
+    std::error_code error;
+    if (!plain || !std::filesystem::is_regular_file(file, error)) {
+      lua_newtable(L);
+      return 1;
+    }
+    std::string source;
+    try {
+      source = readFile(file);
+    } catch (const std::exception& e) {
+      return luaL_error(L, "%s", e.what());
+    }
+    if (luaL_loadbuffer(L, source.data(), source.size(), ("@" + file.string()).c_str()) != LUA_OK) return lua_error(L);
+    lua_call(L, 0, 1);
+    if (lua_isnil(L, -1)) {
+      lua_pop(L, 1);
+      lua_newtable(L);
+    }
+    lua_pushvalue(L, -1);
+    lua_setfield(L, -3, name.c_str());
+    return 1;
+  }
 
   void resetBudget() {
     lua_pushinteger(L_, 0);
@@ -230,9 +272,11 @@ class Fields {
           e.order = lua_tonumber(L_, -1);
         } else if (lua_type(L_, -1) == LUA_TSTRING && std::string(lua_tostring(L_, -1)) == "exact") {
           e.exact = true;
+        } else if (lua_type(L_, -1) == LUA_TSTRING && std::string(lua_tostring(L_, -1)) == "none") {
+          e.known = false;  // reported, not expected (its asymptotic range lies beyond the sweep)
         } else {
           lua_pop(L_, 3);
-          fail("expected_order." + key, "must be a number or \"exact\"");
+          fail("expected_order." + key, "must be a number, \"exact\" or \"none\"");
         }
         out[key] = e;
         lua_pop(L_, 1);
@@ -293,7 +337,6 @@ Problem loadProblem(const std::filesystem::path& file) {
   lua_getglobal(L, "Exact");
   const bool has_exact = lua_type(L, -1) == LUA_TFUNCTION;
   lua_pop(L, 1);
-  if (!has_exact) throw std::runtime_error(shown + ": no Exact(t) function (see scripts/accuracy/README.md)");
 
   // The title as the scene table gives it (a string field only; the Scene validates the rest).
   lua_getglobal(L, "scene");
@@ -318,7 +361,27 @@ Problem loadProblem(const std::filesystem::path& file) {
     else if (*g == "impact") p.group = Group::Impact;
     else if (*g == "contact") p.group = Group::Contact;
     else if (*g == "sanity") p.group = Group::Sanity;
-    else f.fail("group", "must be one of smooth, impact, contact, sanity, got \"" + *g + "\"");
+    else if (*g == "mechanism") p.group = Group::Mechanism;
+    else f.fail("group", "must be one of smooth, impact, contact, sanity, mechanism, got \"" + *g + "\"");
+  }
+  if (const auto fit = f.string("fit")) {
+    if (*fit != "position" && *fit != "energy") f.fail("fit", "must be \"position\" or \"energy\", got \"" + *fit + "\"");
+    p.fit_energy = *fit == "energy";
+  }
+  if (!has_exact && !p.fit_energy)
+    throw std::runtime_error(shown + ": no Exact(t) function (see scripts/accuracy/README.md)");
+  if (const auto e = f.number("energy_scale")) {
+    if (!(*e > 0)) f.fail("energy_scale", "must be > 0");
+    p.energy_scale = *e;
+  }
+  if (p.fit_energy && !p.energy_scale) f.fail("energy_scale", "is required with fit = \"energy\" (the energy errors are divided by it) [J]");
+  if (const auto a = f.number("asymptotic_below")) {
+    if (!(*a > 0)) f.fail("asymptotic_below", "must be > 0");
+    p.asymptotic_below = *a;
+  }
+  if (const auto t = f.number("order_tolerance")) {
+    if (!(*t > 0)) f.fail("order_tolerance", "must be > 0");
+    p.order_tolerance = *t;
   }
   static const std::set<std::string> kMetrics = {"energy", "momentum", "angmom", "velocity", "pos_linf", "pos_final"};
   for (const std::string& m : f.stringList("metrics")) {

@@ -26,6 +26,8 @@ enum class Group {
             //   like a smooth problem, the integrator's own order expected through the impacts
   Contact,  // persistent contact, solved once per step: order reported, not gated
   Sanity,   // round-off checks (free fall): not fitted
+  Mechanism,  // jointed bodies touching nothing, integrated with their joints (WorldDef::exact_joints):
+              //   fitted and gated like a smooth problem; a section of their own in the report
 };
 const char* groupName(Group g);
 
@@ -55,6 +57,13 @@ struct Problem {
   std::optional<double> period;
   std::string period_body;
   std::string note;
+  // What the error is: "position" (‖p − p_exact‖ / reference_length against Exact(t)), or
+  // "energy" (max |E − E0| / energy_scale, for a chaotic problem whose trajectory has no closed
+  // form but whose energy is conserved: the double pendulum).
+  bool fit_energy = false;
+  std::optional<double> energy_scale;     // [J]: energy errors are |E − E0| / energy_scale (else |E/E0 − 1|)
+  std::optional<double> order_tolerance;  // around the expected orders (default ±0.2, ±0.3 for order 4)
+  double asymptotic_below = 0.1;          // errors below this (and above round-off) are fitted
   std::shared_ptr<ProblemScript> script;  // holds accuracy.energy when the scene gives one
 
   Expected expectedFor(const std::string& integrator) const;

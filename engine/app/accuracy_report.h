@@ -44,6 +44,9 @@ struct Fit {
   double dt_min = 0, dt_max = 0;
 };
 Fit fitOrder(const std::vector<const Row*>& rows);
+// The same window fitted against the run time instead of dt: log err ≈ c + slope · log wall_s_min
+// (timed runs only). A method of order p whose cost is proportional to its steps has slope −p.
+Fit fitWork(const std::vector<const Row*>& rows);
 
 // The verdict on one problem × integrator against its expectation.
 struct Verdict {

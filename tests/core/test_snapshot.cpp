@@ -324,7 +324,7 @@ TEST_CASE("snapshot: the application data travels through the file (since versio
   snap.setLabel("scene: x.lua\n");
   snap.setAppData(data);
   const std::string bytes = serializeSnapshot(snap);
-  CHECK(bytes[18] == 3);
+  CHECK(bytes[18] == 4);
   const WorldSnapshot read = deserializeSnapshot(bytes);
   CHECK(read.appData() == data);
   CHECK(read.label() == "scene: x.lua\n");
@@ -341,7 +341,7 @@ TEST_CASE("snapshot: the application data travels through the file (since versio
   CHECK(deserializeSnapshot(serializeSnapshot(snap)).appData().empty());
 }
 
-TEST_CASE("snapshot: version 1 and 2 files still load and resume the same bits as the program that wrote them") {
+TEST_CASE("snapshot: version 1, 2 and 3 files still load and resume the same bits as the program that wrote them") {
   const std::string v2 = version2File();
   const std::string v1 = asVersion1(v2, std::string("bouncers").size());
   CHECK(v1.size() == v2.size() - 8);
@@ -354,26 +354,28 @@ TEST_CASE("snapshot: version 1 and 2 files still load and resume the same bits a
     CHECK(old.bodyCount() == 10);
     World w;
     w.restore(old);
+    // Its writer solved every joint in the contact solvers (WorldDef::exact_joints came later).
+    CHECK_FALSE(w.settings().exact_joints);
     run(w, 40);
     CHECK(stateHash(w) == kVersion2Resumed);
-    // Written again, it is a version 3 file, which resumes the same.
+    // Written again, it is a version 4 file, which resumes the same.
     const std::string v3 = serializeSnapshot(old);
-    CHECK(v3[18] == 3);
+    CHECK(v3[18] == 4);
     CHECK(v3.size() < file->size());
     World again;
     again.restore(deserializeSnapshot(v3));
     run(again, 40);
     CHECK(stateHash(again) == kVersion2Resumed);
   }
-  // Versions outside 1..3 are refused, naming both.
-  for (char version : {0, 4}) {
+  // Versions outside 1..4 are refused, naming both.
+  for (char version : {0, 5}) {
     std::string t = v2;
     t[18] = version;
     try {
       (void)deserializeSnapshot(t);
       FAIL("version " << int{version} << " was read");
     } catch (const SnapshotError& e) {
-      CHECK(std::string(e.what()) == "snapshot: version " + std::to_string(version) + ", this program reads versions 1 to 3");
+      CHECK(std::string(e.what()) == "snapshot: version " + std::to_string(version) + ", this program reads versions 1 to 4");
     }
   }
 }

@@ -21,6 +21,7 @@
 #include <cmath>
 
 #include "joint_solver.h"
+#include "mechanism_step.h"
 #include "stages.h"
 #include "world_impl.h"
 
@@ -407,7 +408,7 @@ void chooseSolvers(WorldImpl& w) {
   const auto active = [&](uint32_t slot) { return slot != kWorldSlot && w.isActive(slot); };
   for (uint32_t k = 0; k < w.joints.size(); ++k) {
     const Joint& j = w.joints[k];
-    if (!j.alive) continue;
+    if (!j.alive || mechanismSettled(w, k)) continue;  // integrated exactly (mechanism_step.cpp)
     const uint32_t slots[4] = {j.a, j.b, j.c, j.d};
     uint32_t first = kWorldSlot;
     for (uint32_t s : slots) {

@@ -32,6 +32,7 @@
 
 #include "impact.h"
 #include "manifold.h"
+#include "mechanism_step.h"
 #include "stages.h"
 #include "world_impl.h"
 
@@ -349,6 +350,7 @@ class Timeline {
 void integrate(WorldImpl& w, double dt) {
   beginIntegration(w);
   chooseLocatedBodies(w);
+  chooseMechanisms(w);
   // Scheduled events: the end times of forces that run out inside the step. Without a split the
   // interval is exactly dt (not t_end − t_begin, which rounds differently).
   const double t_begin = w.clock.t, eps = 1e-9 * dt;

@@ -26,6 +26,8 @@
 #include <chrono>
 #include <cmath>
 
+#include "body_acceleration.h"
+#include "mechanism_step.h"
 #include "stages.h"
 #include "world_impl.h"
 
@@ -64,14 +66,8 @@ void evaluateForces(WorldImpl& w, double t0, double t, bool state_dependent, std
   w.stats.forces_ms += std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-// Linear and angular acceleration of body i from its accumulated wrench: a = F/m + g, α = τ/I.
-struct Accel {
-  Vec2 a;
-  double alpha;
-};
 [[gnu::always_inline]] inline Accel accelerationOf(const WorldImpl& w, uint32_t i, const Wrench& wr) {
-  const Body& b = w.bodies[i];
-  return {wr.force * b.inv_mass + w.def.gravity * b.gravity_scale, wr.torque * b.inv_inertia};
+  return bodyAcceleration(w.bodies[i], w.def.gravity, wr);
 }
 
 void setStageState(WorldImpl& w, uint32_t i, const Vec2& c, double angle, const Vec2& v, double omega) {
@@ -114,49 +110,16 @@ bool dampingTooStiffForRk4(WorldImpl& w, double t0, double h, const char* only) 
   return false;
 }
 
-}  // namespace
 
-void integrateInterval(WorldImpl& w, double t0, double h, const char* only) {
+// One integrator step of length h from t0 (integrateInterval splits an interval into these).
+void integrateStep(WorldImpl& w, double t0, double h, const char* only) {
   const uint32_t n = static_cast<uint32_t>(w.bodies.size());
-  // Body damping (BodyDef::linear_damping, angular_damping) first, implicit over the interval, on
-  // the velocity the interval starts with; then the integrator adds what the forces and gravity
-  // give (for semi-implicit Euler v ← v / (1 + h c) + h a, as Box2D v3 does):
-  //   v ← v / (1 + h c)
-  // which shrinks a velocity towards zero for any h c ≥ 0 and never flips it. Damping after the
-  // integrator, v ← (v + h g) / (1 + h c), would also shrink the velocity gravity gave in this
-  // step, before the joints and contacts take it away: a damped body held still would then weigh
-  // m g / (1 + h c) on its pin or its floor, and a resting one sink by the contact slop.
   bool any_force = false, any_dependent = false;
   for (const ForceEntry& f : w.forces) {
     if (!selected(f, only)) continue;
     any_force |= isActive(f, t0);
     any_dependent |= isActive(f, t0) && f.force->dependsOnState();
   }
-  // Forces read the damped velocity, so with forces the damping is a pass of its own; without,
-  // each integrator's loop damps the body it is at (one pass over the bodies instead of two).
-  const auto damp = [h](Body& b) {
-    if (b.linear_damping > 0.0) b.velocity *= 1.0 / (1.0 + h * b.linear_damping);
-    if (b.angular_damping > 0.0) b.angular_velocity *= 1.0 / (1.0 + h * b.angular_damping);
-  };
-  const bool damp_in_loop = !any_force;
-  if (any_force)
-    for (uint32_t i = 0; i < n; ++i)
-      if (isMoving(w, i, only)) damp(w.bodies[i]);
-  // The states are what forces read (ForceInput); gravity alone needs none, and filling them costs
-  // a sine and a cosine per body (a tenth of the step's integration in a pile of boxes).
-  if (any_force)
-    for (uint32_t i = 0; i < n; ++i)
-      if (w.alive[i]) w.states[i] = WorldImpl::stateOf(w.bodies[i]);
-
-  std::fill(w.const_wrenches.begin(), w.const_wrenches.end(), Wrench{});
-  evaluateForces(w, t0, t0, false, w.const_wrenches, only);
-
-  // All forces at time t on the current w.states → w.wrenches.
-  const auto derivative = [&](double t) {
-    std::copy(w.const_wrenches.begin(), w.const_wrenches.end(), w.wrenches.begin());
-    if (any_dependent) evaluateForces(w, t0, t, true, w.wrenches, only);
-  };
-
   // RK4 is explicit: a damper with h·c/m above 2.785 multiplies the velocity by more than 1 each
   // step (RK4's factor is the degree-4 Taylor polynomial of e^(−hc/m): 291 at hc/m = 10) and blows
   // up (docs/design/accuracy.md S5). Above 2.5 the interval is integrated as semi-implicit Euler with implicit
@@ -166,18 +129,83 @@ void integrateInterval(WorldImpl& w, double t0, double h, const char* only) {
     method = Integrator::SemiImplicitEuler;
     ++w.stats.rk4_handovers;
   }
+  const bool rk4 = method == Integrator::RungeKutta4;
+  // Exact mechanisms (mechanism_step.cpp): the moving bodies of islands of jointed bodies that touch
+  // nothing (per slot: kStagedMechanism, whose joints' forces are computed at every stage, or
+  // kStiffMechanism, stepped by stepStiffMechanisms). Their bodies are never located, so an
+  // interval for some bodies only (`only`) never holds one.
+  const char* mechanism = only ? nullptr : mechanismBodies(w);
+  const auto stiff = [&](uint32_t i) { return mechanism && mechanism[i] == kStiffMechanism; };
+  // Body damping (BodyDef::linear_damping, angular_damping): with RK4 a force −c m v, −c_ω I ω
+  // evaluated at every stage (body_acceleration.h), so a damped body keeps order 4; with the Euler
+  // methods, and with RK4 where h c > 2.5, implicit over the interval on the velocity the interval
+  // starts with, before the integrator adds what the forces and gravity give (for semi-implicit
+  // Euler v ← v / (1 + h c) + h a, as Box2D v3 does):
+  //   v ← v / (1 + h c)
+  // which shrinks a velocity towards zero for any h c ≥ 0 and never flips it. Damping after the
+  // integrator, v ← (v + h g) / (1 + h c), would also shrink the velocity gravity gave in this
+  // step, before the joints and contacts take it away: a damped body held still would then weigh
+  // m g / (1 + h c) on its pin or its floor, and a resting one sink by the contact slop.
+  const auto staged_damping = [&](const Body& b) { return rk4 && dampingInStages(b, h); };
+  // Forces read the damped velocity, so with forces the damping is a pass of its own; without,
+  // each integrator's loop damps the body it is at (one pass over the bodies instead of two).
+  const auto damp = [&](Body& b) {
+    if (staged_damping(b)) return;
+    if (b.linear_damping > 0.0) b.velocity *= 1.0 / (1.0 + h * b.linear_damping);
+    if (b.angular_damping > 0.0) b.angular_velocity *= 1.0 / (1.0 + h * b.angular_damping);
+  };
+  const bool damp_in_loop = !any_force;
+  if (any_force)
+    for (uint32_t i = 0; i < n; ++i)
+      if (isMoving(w, i, only)) damp(w.bodies[i]);
+  // RK4's stages run for the bodies whose acceleration changes within the interval: every body when
+  // a force depends on the state, else those of exact mechanisms and those damped in the stages.
+  // The others move under a constant acceleration, for which RK4 is exact and equals its closed
+  // form.
+  bool any_staged = any_dependent || mechanism;
+  if (rk4 && !any_staged)
+    for (uint32_t i = 0; i < n && !any_staged; ++i) any_staged = isMoving(w, i, only) && staged_damping(w.bodies[i]);
+  const auto staged = [&](uint32_t i) {
+    return !stiff(i) && (any_dependent || (mechanism && mechanism[i]) || staged_damping(w.bodies[i]));
+  };
+  // The states are what forces and the stages read (ForceInput); gravity alone needs none, and
+  // filling them costs a sine and a cosine per body (a tenth of the step's integration in a pile
+  // of boxes).
+  if (any_force || any_staged)
+    for (uint32_t i = 0; i < n; ++i)
+      if (w.alive[i]) w.states[i] = WorldImpl::stateOf(w.bodies[i]);
+
+  std::fill(w.const_wrenches.begin(), w.const_wrenches.end(), Wrench{});
+  evaluateForces(w, t0, t0, false, w.const_wrenches, only);
+
+  // All forces at time t on the current w.states → w.wrenches; the mechanisms' forces added, with
+  // the stage's weight in the update (their joints' impulses).
+  const auto derivative = [&](double t, double weight) {
+    std::copy(w.const_wrenches.begin(), w.const_wrenches.end(), w.wrenches.begin());
+    if (any_dependent) evaluateForces(w, t0, t, true, w.wrenches, only);
+    if (mechanism) addMechanismForces(w, t, weight, h, rk4);
+  };
+  // The acceleration of body i at the current stage.
+  const auto stageAcceleration = [&](uint32_t i) {
+    const Body& b = w.bodies[i];
+    if (!staged_damping(b)) return accelerationOf(w, i, w.wrenches[i]);
+    const BodyState& st = w.states[i];
+    return dampedAcceleration(b, w.def.gravity, w.wrenches[i], st.velocity, st.angular_velocity);
+  };
+
   switch (method) {
     case Integrator::ExplicitEuler:
     case Integrator::SemiImplicitEuler:
     case Integrator::ImplicitEuler: {
-      derivative(t0);
+      derivative(t0, 1.0);
+      if (mechanism) stepStiffMechanisms(w, t0, h);
       const bool semi = method != Integrator::ExplicitEuler;
       // Damping (and for implicit_euler stiffness) of springs and dampers is linearly implicit
       // (implicit_solve.cpp); without such forces Δv = h a(t_n, y_n), and without any force nothing
       // to linearise (no pass over the bodies to look).
       const bool implicit = any_force && implicitVelocityChange(w, t0, h, method == Integrator::ImplicitEuler, only);
       for (uint32_t i = 0; i < n; ++i) {
-        if (!isMoving(w, i, only)) continue;
+        if (!isMoving(w, i, only) || stiff(i)) continue;
         Body& b = w.bodies[i];
         if (damp_in_loop) damp(b);
         Vec2 dv;
@@ -206,23 +234,21 @@ void integrateInterval(WorldImpl& w, double t0, double h, const char* only) {
       break;
     }
     case Integrator::RungeKutta4: {
-      if (!any_dependent) {
-        // Constant acceleration over the interval: RK4 is exact, and equals this closed form.
-        for (uint32_t i = 0; i < n; ++i) {
-          if (!isMoving(w, i, only)) continue;
-          Body& b = w.bodies[i];
-          if (damp_in_loop) damp(b);
-          const Accel acc = accelerationOf(w, i, w.const_wrenches[i]);
-          b.center += h * b.velocity + 0.5 * h * h * acc.a;
-          b.angle += h * b.angular_velocity + 0.5 * h * h * acc.alpha;
-          b.velocity += h * acc.a;
-          b.angular_velocity += h * acc.alpha;
-        }
-        break;
+      // Constant acceleration over the interval: RK4 is exact, and equals this closed form.
+      for (uint32_t i = 0; i < n; ++i) {
+        if (!isMoving(w, i, only) || stiff(i) || (any_staged && staged(i))) continue;
+        Body& b = w.bodies[i];
+        if (damp_in_loop) damp(b);
+        const Accel acc = accelerationOf(w, i, w.const_wrenches[i]);
+        b.center += h * b.velocity + 0.5 * h * h * acc.a;
+        b.angle += h * b.angular_velocity + 0.5 * h * h * acc.alpha;
+        b.velocity += h * acc.a;
+        b.angular_velocity += h * acc.alpha;
       }
+      if (!any_staged) break;
       auto& s = w.rk4;
       for (uint32_t i = 0; i < n; ++i) {
-        if (!isMoving(w, i, only)) continue;
+        if (!isMoving(w, i, only) || !staged(i)) continue;
         const Body& b = w.bodies[i];
         s.c0[i] = b.center;
         s.a0[i] = b.angle;
@@ -239,11 +265,12 @@ void integrateInterval(WorldImpl& w, double t0, double h, const char* only) {
       static constexpr double kWeight[4] = {1.0, 2.0, 2.0, 1.0};
       static constexpr double kNext[3] = {0.5, 0.5, 1.0};
       for (int k = 0; k < 4; ++k) {
-        derivative(t0 + kTime[k] * h);
+        derivative(t0 + kTime[k] * h, kWeight[k] / 6.0);
+        if (k == 0 && mechanism) stepStiffMechanisms(w, t0, h);
         for (uint32_t i = 0; i < n; ++i) {
-          if (!isMoving(w, i, only)) continue;
+          if (!isMoving(w, i, only) || !staged(i)) continue;
           const BodyState& st = w.states[i];
-          const Accel acc = accelerationOf(w, i, w.wrenches[i]);
+          const Accel acc = stageAcceleration(i);
           const Vec2 kc = st.velocity;
           const double ka = st.angular_velocity;
           s.dc[i] += kWeight[k] * kc;
@@ -257,7 +284,7 @@ void integrateInterval(WorldImpl& w, double t0, double h, const char* only) {
         }
       }
       for (uint32_t i = 0; i < n; ++i) {
-        if (!isMoving(w, i, only)) continue;
+        if (!isMoving(w, i, only) || !staged(i)) continue;
         Body& b = w.bodies[i];
         b.center = s.c0[i] + (h / 6.0) * s.dc[i];
         b.angle = s.a0[i] + (h / 6.0) * s.da[i];
@@ -267,8 +294,44 @@ void integrateInterval(WorldImpl& w, double t0, double h, const char* only) {
       break;
     }
   }
+  // The mechanisms' bodies back onto their joints (mechanism.h): what keeps the integrator's order.
+  if (mechanism) projectMechanisms(w, t0 + h);
   for (uint32_t i = 0; i < n; ++i)
     if (isMoving(w, i, only)) WorldImpl::syncTransform(w.bodies[i]);
+}
+
+}  // namespace
+
+void integrateInterval(WorldImpl& w, double t0, double h, const char* only) {
+  // An exact mechanism is integrated by an explicit method, stable and accurate only while h times
+  // its fastest rate (a body's turning, a joint spring's frequency) stays small (RK4: below 2.8 on
+  // an oscillation); a chain's free end whipping round turns at hundreds of rad/s. Such an interval
+  // is split into steps that turn at most kMechanismTurn each, and split again while a step drifts
+  // off the joints by more than kMaxMechanismDrift (mechanism_step.h). Every body takes the same
+  // steps, so that forces between bodies still see one state. Worlds without a mechanism, and
+  // mechanisms slow enough, take the interval whole.
+  const bool mechanisms = !only && mechanismBodies(w);
+  if (!mechanisms) {
+    integrateStep(w, t0, h, only);
+    return;
+  }
+  for (int steps = mechanismSteps(w, h);;) {
+    beginMechanismAttempt(w);
+    const double part = h / steps;
+    for (int k = 0; k < steps; ++k) integrateStep(w, t0 + k * part, k + 1 == steps ? h - k * part : part, only);
+    if (!mechanismAttemptFailed(w)) return;
+    restoreMechanismAttempt(w);
+    if (steps < kMaxMechanismSteps) {
+      steps *= 2;
+      continue;
+    }
+    // Past kMaxMechanismSteps the islands that still drift are stiff (a long chain under tension:
+    // its fastest waves turn faster than any affordable step): stepped as stiff mechanisms instead
+    // (stable at any step), the others with the steps they need. Each round makes at least one
+    // more island stiff, so this ends.
+    stiffenDriftingMechanisms(w);
+    steps = mechanismSteps(w, h);
+  }
 }
 
 void beginIntegration(WorldImpl& w) {

@@ -1,7 +1,7 @@
 // The snapshot file format (world_snapshot.h). Binary, little-endian, versioned:
 //
 //   "RIGIDLAB-SNAPSHOT\n"  magic (18 bytes)
-//   u32 version            kVersion (3); versions 1 and 2 are read too
+//   u32 version            kVersion (4); versions 1 to 3 are read too
 //   u64 payload length
 //   payload                the label; since version 2 the application data (u64 length, bytes);
 //                          then the state, field by field (io() below)
@@ -31,8 +31,10 @@ constexpr char kMagic[] = "RIGIDLAB-SNAPSHOT\n";
 constexpr size_t kMagicBytes = sizeof kMagic - 1;
 // Version 1: version 2 without the application data. Version 2: version 3 with five more numbers
 // per contact point, which only sequential impulses' prepare writes and the step reads no more
-// (io(ContactPoint) below).
-constexpr uint32_t kVersion = 3;
+// (io(ContactPoint) below). Version 3: version 4 without WorldDef::exact_joints, which a file of
+// version 3 or older reads as off: its writer solved every joint in the contact solvers, and the
+// file resumes in its writer's bits.
+constexpr uint32_t kVersion = 4;
 constexpr uint32_t kOldestVersion = 1;
 
 uint64_t fnv1a(std::string_view bytes) {
@@ -269,6 +271,13 @@ void io(A& a, WorldDef& d) {
   a(d.joint_hertz);
   a(d.joint_damping_ratio);
   a(d.static_friction_speed);
+  bool before_version_4 = false;
+  if constexpr (A::kReading) before_version_4 = a.version < 4;
+  if (before_version_4) {
+    d.exact_joints = false;
+  } else {
+    a(d.exact_joints);
+  }
 }
 
 template <typename A>

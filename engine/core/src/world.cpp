@@ -16,6 +16,7 @@
 #include <cmath>
 
 #include "rigidlab/error.h"
+#include "mechanism_step.h"
 #include "stages.h"
 #include "world_impl.h"
 
@@ -97,9 +98,11 @@ void World::step(double dt) {
     throw;
   }
   const auto t3 = Clock::now();
+  settleMechanisms(w);  // exact mechanisms still touching nothing keep their joints out of the contact solve
   solveContacts(w);  // docs/design/thesis.md §8–10: contacts and joints; large islands by the soft step
   const auto t4 = Clock::now();
   correctPositions(w);  // docs/design/thesis.md §9: penetration and joint errors (the soft step's islands need none)
+  finishMechanisms(w);  // the joints of exact mechanisms that met something: their impulses
   guardNonFinite(w, "the contact solve");
   breakJoints(w);  // joints over their break force or torque go, reported (jointBreaks)
   finishContactEvents(w);  // the events' impulses, now that they are known
@@ -122,7 +125,8 @@ void World::step(double dt) {
   s.finish_ms = ms(t5, t6);
   s.pairs = static_cast<int>(w.pairs.size());
   s.contacts = static_cast<int>(w.contacts.size());
-  s.joints = static_cast<int>(w.si_joints.size() + w.soft_joints.size());
+  s.exact_joints = exactJointCount(w);
+  s.joints = static_cast<int>(w.si_joints.size() + w.soft_joints.size()) + s.exact_joints;
   for (const Contact& c : w.contacts) s.contact_points += c.count;
   for (size_t i = 0; i < w.bodies.size(); ++i) {
     if (!w.alive[i]) continue;

@@ -79,6 +79,32 @@ struct UncopiedFlag {
   }
 };
 
+// Scratch that one stage owns: its type is declared in that stage's own file, so the other stages
+// cannot reach into it; it is made by the stage's first use, and a copy of the world
+// (World::snapshot) starts without one (scratch is never simulation state).
+template <typename T>
+class StageScratch {
+ public:
+  StageScratch() = default;
+  StageScratch(const StageScratch&) {}
+  StageScratch& operator=(const StageScratch&) {
+    p_.reset();
+    return *this;
+  }
+  StageScratch(StageScratch&&) noexcept = default;
+  StageScratch& operator=(StageScratch&&) noexcept = default;
+  T& get() {
+    if (!p_) p_ = std::make_shared<T>();
+    return *p_;
+  }
+  T* find() const { return p_.get(); }
+
+ private:
+  std::shared_ptr<T> p_;  // shared_ptr: destroyed where T is not known
+};
+
+struct MechanismStage;  // mechanism_step.cpp
+
 struct WorldImpl {
   WorldDef def;
   // The worker threads WorldDef::threads asks for (task_pool.h): made by the first step that uses
@@ -164,6 +190,7 @@ struct WorldImpl {
     std::vector<double> a0, w0, da, dw;
   } rk4;
   ImpactScratch impact;  // located impacts (impact.h)
+  StageScratch<MechanismStage> mechanisms;  // exact mechanisms (mechanism_step.cpp)
 
   // The contact solver's compact working copies (contact_solver.cpp).
   std::vector<SolverBody> solver_velocities;

@@ -168,6 +168,13 @@ struct WorldDef {
   // removes their position error (at most a quarter of the sub-step rate is used). [Hz] > 0, ≥ 0
   double joint_hertz = 120.0;
   double joint_damping_ratio = 1.0;
+  // Islands of jointed bodies that touch nothing (pendulums, linkages, chains, ragdolls in flight)
+  // are integrated with their joints: the joints' forces solved exactly at every stage of the
+  // integrator and the bodies projected back onto the joints after each step, so the integrator
+  // keeps its order and every joint holds to round-off (docs/integrators.md "Joints inside the
+  // integrator"; which joints and islands in docs/physics.md). Off: every joint is solved by the
+  // contact solvers after the integrator (first order), as before.
+  bool exact_joints = true;
   // Static friction (f_s) is used when the tangential speed at the start of the step is below this,
   // dynamic friction (f_d) otherwise (docs/design/thesis.md §10, the "small ε"). [m/s] ≥ 0
   double static_friction_speed = 0.01;
@@ -215,6 +222,10 @@ struct StepStats {
   int rk4_handovers = 0;  // intervals RK4 left to semi-implicit Euler: a damper too stiff for it
   int joint_position_passes = 0;  // Gauss–Seidel passes of the joints' position correction (sequential impulses)
   int joint_newton_steps = 0;     // Newton steps of the joints' direct position solve (sequential impulses)
+  int exact_joints = 0;           // joints integrated exactly this step (WorldDef::exact_joints), also in `joints`
+  int mechanism_newton = 0;       // Newton iterations of their projections onto the joints
+  int mechanism_retries = 0;      // intervals integrated again in more steps: a step drifted too far off the joints
+  double mechanism_residual = 0;  // largest joint error their projections left [m or rad]
   double total_ms() const { return integrate_ms + broad_phase_ms + narrow_phase_ms + solve_ms + correct_ms + finish_ms; }
 };
 

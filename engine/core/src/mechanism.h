@@ -1,0 +1,188 @@
+// Exact mechanisms: the room of the step that integrates islands of jointed bodies touching nothing
+// as one smooth ODE (docs/integrators.md, "Joints inside the integrator").
+//
+// At every stage of the integrator the joints' constraint forces come from an exact solve of the
+// index-1 system (acceleration-level constraints)
+//   (J M⁻¹ Jᵀ) λ = −J a − J̇ v        a: the bodies' accelerations from every other force
+// and the stage's acceleration is a + M⁻¹ Jᵀ λ; after the step the positions and velocities are
+// projected back onto the constraints in the mass metric,
+//   q ← q − M⁻¹ Jᵀ (J M⁻¹ Jᵀ)⁻¹ g(q)    (simplified Newton, until g is at round-off)
+//   v ← v − M⁻¹ Jᵀ (J M⁻¹ Jᵀ)⁻¹ J v
+// which moves a step's result by O(h^{p+1}) and so keeps the integrator's order p (Hairer, Lubich,
+// Wanner, Geometric Numerical Integration IV.4; Hairer, Wanner, Solving ODEs II, VII.2). Joint
+// springs are forces on a coordinate, evaluated at every stage: f = −k (x − x₀) − c ẋ with the
+// soft constraint's k = m ω², c = 2 m ζ ω, m = 1/(J M⁻¹ Jᵀ) of that coordinate.
+//
+// This header is the room's whole interface: an island comes in as plain bodies (states and
+// inverse masses) and coordinates between them; nothing here sees the world. mechanism_step.cpp
+// makes islands from the world's joints, calls in at each stage and after each interval, and
+// writes the multipliers back into the joints.
+#pragma once
+
+#include <Eigen/Dense>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <vector>
+
+#include "rigidlab/math.h"
+
+namespace rigidlab::mechanism {
+
+// A body's state: centre of mass, angle, velocity, angular velocity.
+struct State {
+  Vec2 c = Vec2::Zero();
+  double angle = 0.0;
+  Vec2 v = Vec2::Zero();
+  double w = 0.0;
+};
+
+// A scalar measure of the configuration between bodies A and B (island indices), with anchors
+// s_A, s_B from the centres of mass in body coordinates: P = c + R(θ) s, d = P_B − P_A.
+enum class Measure : uint8_t {
+  PointX,    // d_x
+  PointY,    // d_y
+  Angle,     // θ_B − θ_A − offset
+  Axis,      // n · d, n = R(θ_A) axis: a direction fixed in A
+  Distance,  // |d|
+};
+
+struct Term {
+  Measure measure = Measure::PointX;
+  uint32_t a = 0, b = 0;
+  Vec2 sa = Vec2::Zero(), sb = Vec2::Zero();
+  Vec2 axis = Vec2(1.0, 0.0);  // Axis: unit, in A's frame
+  double offset = 0.0;         // Angle: the reference angle
+  double weight = 1.0;         // in a coordinate of two terms
+};
+
+// A coordinate: one term, or the weighted sum of two (a gear's coordinate_1 + ratio · coordinate_2,
+// a pulley's length_a + ratio · length_b).
+struct Coordinate {
+  Term term[2];
+  int terms = 1;
+};
+
+// A coordinate at a state: value x, rate ẋ = J v and J̇ v (so that ẍ = J a + J̇ v), with the
+// Jacobian J over at most four bodies (each body once).
+struct Evaluated {
+  double x = 0.0, xdot = 0.0, jdotv = 0.0;
+  int count = 0;
+  uint32_t body[4] = {0, 0, 0, 0};
+  Eigen::Vector3d j[4];
+};
+// `rotations`: R(θ) of each body at `states` (rotationsOf).
+Evaluated evaluate(const Coordinate& c, const State* states, const Rot* rotations);
+void rotationsOf(const std::vector<State>& states, std::vector<Rot>& out);
+
+// A rigid constraint x = target.
+struct Equality {
+  Coordinate coordinate;
+  double target = 0.0;
+};
+
+// A spring on one coordinate, or on two solved as one 2-vector (a soft weld's anchors: the 2×2
+// effective mass, as its soft constraint has): f = −K (ω² (x − rest) + 2 ζ ω ẋ), K = (J M⁻¹ Jᵀ)⁻¹.
+struct Spring {
+  Coordinate coordinate[2];
+  int dimension = 1;
+  double rest[2] = {0.0, 0.0};
+  double hertz = 0.0, damping_ratio = 0.0;
+  double max_force = std::numeric_limits<double>::infinity();  // dimension 1: |f| at most this [N]
+};
+
+// An island: its bodies (the moving ones first, then the fixed ones, whose inverse masses are
+// zero and whose states the caller keeps current: static, asleep, kinematic, the world) and what
+// joins them.
+struct Island {
+  std::vector<State> states;
+  std::vector<double> im, ii;  // per body
+  uint32_t moving = 0;
+  std::vector<Equality> equalities;
+  std::vector<Spring> springs;
+};
+
+// How a projection went: the largest |g| before it (the step's drift, an estimate of its local
+// error) and left after it [m or rad], and the Newton iterations taken.
+struct Projection {
+  double drift = 0.0;
+  double residual = 0.0;
+  int iterations = 0;
+};
+
+// The island's solver: the factorisation of J M⁻¹ Jᵀ (dense below kDenseRows rows, else sparse
+// LDLᵀ with an approximate minimum degree ordering, whose analysis is kept while the island's
+// structure stays the same) and its scratch. One per island; reusing it allocates nothing while
+// the island keeps its shape.
+class Solver {
+ public:
+  static constexpr int kDenseRows = 48;
+
+  // The spring and constraint forces on the moving bodies at the island's states: `accel` holds
+  // each moving body's acceleration (a_x, a_y, α) from every other force; `force` receives the
+  // generalised force (F_x, F_y, τ) the springs and constraints add. Afterwards multiplier(k) is
+  // equality k's λ and springForce(k) spring k's force (first component).
+  void forces(const Island& island, const Eigen::Vector3d* accel, Eigen::Vector3d* force);
+
+  // Projects the moving bodies' positions, then velocities, onto the equalities (the island's
+  // states are updated). `tolerance`: |g| at which Newton stops [m, rad]. Afterwards
+  // impulse(k) is the impulse [N·s] equality k applied to make the velocities tangent: the
+  // O(h^{p+1}) remainder after a step; after an edit between steps (an applied impulse, a velocity
+  // set), the joints' answer to it, as rigid joints answer a blow.
+  Projection project(Island& island, double tolerance);
+
+  // The velocities alone onto the equalities where the bodies are (impulse(k) as after project).
+  void projectVelocities(Island& island);
+
+  double multiplier(size_t k) const { return lambda_[static_cast<Eigen::Index>(k)]; }
+  double impulse(size_t k) const { return impulse_[static_cast<Eigen::Index>(k)]; }
+  double springForce(size_t k) const { return spring_force_[k]; }
+  // The largest |g| and |J v| of the equalities at the island's states.
+  double residual(const Island& island);
+  double velocityResidual(const Island& island);
+
+ private:
+  // J at the states into rows_ (and x, ẋ, J̇v); builds the structure when it changed.
+  void evaluateRows(const Island& island);
+  void structure(const Island& island);
+  void factor(const Island& island);
+  // Two passes v ← v − M⁻¹ Jᵀ A⁻¹ J v with J where the bodies are and the last factorisation.
+  void velocityPasses(Island& island);
+  // x = A⁻¹ b with the last factorisation.
+  void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  // Adds M⁻¹ Jᵀ λ scaled by `scale` to `out` (3 per moving body).
+  void applyTranspose(const Island& island, const Eigen::VectorXd& lambda, double scale, Eigen::VectorXd& out) const;
+
+  std::vector<Evaluated> rows_;
+  // Structure: per row, its moving bodies; the entries of A they make (row r, row s, body k,
+  // position in the values of A). Kept while `signature_` (each row's bodies) is unchanged.
+  std::vector<uint32_t> signature_, signature_now_;
+  bool built_ = false;
+  struct Entry {
+    uint32_t r, s, jr, js;  // rows, and the index of the body in each row's Jacobian
+    uint32_t body;
+    int value;  // sparse: index into A's values; dense: unused
+  };
+  std::vector<Entry> entries_;
+  bool dense_ = true;
+  Eigen::MatrixXd dense_a_;
+  Eigen::LDLT<Eigen::MatrixXd> dense_ldlt_;
+  Eigen::SparseMatrix<double> sparse_a_;  // lower triangle
+  // Held by pointer: Eigen's sparse factorisations cannot be moved, and the islands' solvers live
+  // in a vector.
+  std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>>> sparse_ldlt_;
+  bool analysed_ = false;
+  double shift_ = 0.0;  // regularisation used when A is singular (redundant constraints)
+  Eigen::VectorXd rhs_, lambda_, dq_, impulse_;
+  std::vector<State> start_;  // the states a Newton step starts from (its line search)
+  std::vector<Rot> rot_;      // R(θ) of each body at the island's states, as last placed
+  const Rot* place(const Island& island) {
+    rotationsOf(island.states, rot_);
+    return rot_.data();
+  }
+  std::vector<double> spring_force_;
+};
+
+}  // namespace rigidlab::mechanism

@@ -1,0 +1,356 @@
+// The mechanism solver (mechanism.h): A = J M⁻¹ Jᵀ assembled over the island's rows, factored once
+// per stage and once per projection, and the solves the stages and the projection need.
+//
+// A is sparse: two rows share an entry only when they act on a common moving body, so a chain's A
+// is block tridiagonal and a tree's has no fill when its leaves are eliminated first (Baraff,
+// "Linear-Time Dynamics using Lagrange Multipliers", SIGGRAPH 1996). Large islands are factored as
+// LDLᵀ after an approximate minimum degree ordering, which finds such an order for chains and trees
+// and keeps the fill of small loops small; the ordering and the symbolic factorisation are kept
+// while the island's rows act on the same bodies. Small islands (a pendulum, a ragdoll) are faster
+// dense. Redundant constraints (a closed loop of welds) make A singular: then A + εI is factored,
+// ε = 1e-12 of A's largest diagonal entry, which gives the dependent rows bounded multipliers and
+// changes the independent ones by a relative 1e-12.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "mechanism.h"
+
+namespace rigidlab::mechanism {
+namespace {
+
+constexpr double kSingular = 1e-13;  // a pivot this small relative to A's largest diagonal: singular
+constexpr double kShift = 1e-12;     // the regularisation then, relative to that diagonal
+constexpr int kMaxNewton = 24;
+
+bool isMoving(const Island& island, uint32_t body) { return body < island.moving; }
+
+// J_r M⁻¹ J_sᵀ over one body.
+double weighted(const Eigen::Vector3d& jr, const Eigen::Vector3d& js, double im, double ii) {
+  return im * (jr.x() * js.x() + jr.y() * js.y()) + ii * jr.z() * js.z();
+}
+
+}  // namespace
+
+void Solver::evaluateRows(const Island& island) {
+  const size_t m = island.equalities.size();
+  rows_.resize(m);
+  // The structure is each row's moving bodies, in order: when it is the one the factorisation was
+  // set up for, its analysis is kept.
+  signature_now_.clear();
+  const Rot* rot = place(island);
+  for (size_t k = 0; k < m; ++k) {
+    const Evaluated& r = rows_[k] = evaluate(island.equalities[k].coordinate, island.states.data(), rot);
+    const size_t at = signature_now_.size();
+    signature_now_.push_back(0);
+    for (int i = 0; i < r.count; ++i)
+      if (isMoving(island, r.body[i])) {
+        signature_now_.push_back(r.body[i]);
+        ++signature_now_[at];
+      }
+  }
+  if (signature_now_ != signature_ || !built_) {
+    signature_.swap(signature_now_);
+    structure(island);
+  }
+}
+
+void Solver::structure(const Island& island) {
+  const size_t m = rows_.size();
+  built_ = true;
+  // Per moving body, the rows that act on it (and where it is in each row's Jacobian).
+  std::vector<std::vector<std::pair<uint32_t, uint32_t>>> by_body(island.moving);
+  for (uint32_t r = 0; r < m; ++r)
+    for (int i = 0; i < rows_[r].count; ++i)
+      if (isMoving(island, rows_[r].body[i])) by_body[rows_[r].body[i]].push_back({r, static_cast<uint32_t>(i)});
+  entries_.clear();
+  for (uint32_t body = 0; body < island.moving; ++body) {
+    const auto& list = by_body[body];
+    for (size_t x = 0; x < list.size(); ++x)
+      for (size_t y = 0; y <= x; ++y) {
+        // Lower triangle: r ≥ s.
+        auto [r, jr] = list[x];
+        auto [s, js] = list[y];
+        if (r < s) {
+          std::swap(r, s);
+          std::swap(jr, js);
+        }
+        entries_.push_back({r, s, jr, js, body, -1});
+      }
+  }
+  dense_ = m <= static_cast<size_t>(kDenseRows);
+  analysed_ = false;
+  shift_ = 0.0;
+  if (dense_) {
+    dense_a_.setZero(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(m));
+    return;
+  }
+  // The sparse pattern: every entry, and the diagonal (a row on fixed-rotation bodies only may
+  // have none, and the shift needs it).
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(entries_.size() + m);
+  for (const Entry& e : entries_) triplets.emplace_back(static_cast<int>(e.r), static_cast<int>(e.s), 0.0);
+  for (uint32_t r = 0; r < m; ++r) triplets.emplace_back(static_cast<int>(r), static_cast<int>(r), 0.0);
+  sparse_a_.resize(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(m));
+  sparse_a_.setFromTriplets(triplets.begin(), triplets.end());
+  sparse_a_.makeCompressed();
+  for (Entry& e : entries_) {
+    const int* inner = sparse_a_.innerIndexPtr();
+    const int begin = sparse_a_.outerIndexPtr()[e.s], end = sparse_a_.outerIndexPtr()[e.s + 1];
+    e.value = static_cast<int>(std::lower_bound(inner + begin, inner + end, static_cast<int>(e.r)) - inner);
+  }
+}
+
+void Solver::factor(const Island& island) {
+  const Eigen::Index m = static_cast<Eigen::Index>(rows_.size());
+  double largest = 0.0;
+  if (dense_) {
+    dense_a_.setZero(m, m);
+    for (const Entry& e : entries_)
+      dense_a_(e.r, e.s) += weighted(rows_[e.r].j[e.jr], rows_[e.s].j[e.js], island.im[e.body], island.ii[e.body]);
+    for (Eigen::Index r = 0; r < m; ++r) largest = std::max(largest, dense_a_(r, r));
+    dense_ldlt_.compute(dense_a_);
+    const auto d = dense_ldlt_.vectorD();
+    bool singular = false;
+    for (Eigen::Index r = 0; r < m; ++r) singular |= !(std::abs(d[r]) > kSingular * largest);
+    if (singular && largest > 0.0) {
+      dense_a_.diagonal().array() += kShift * largest;
+      dense_ldlt_.compute(dense_a_);
+    }
+    return;
+  }
+  double* values = sparse_a_.valuePtr();
+  std::fill(values, values + sparse_a_.nonZeros(), 0.0);
+  for (const Entry& e : entries_)
+    values[e.value] += weighted(rows_[e.r].j[e.jr], rows_[e.s].j[e.js], island.im[e.body], island.ii[e.body]);
+  for (Eigen::Index r = 0; r < m; ++r) largest = std::max(largest, sparse_a_.coeff(r, r));
+  if (!sparse_ldlt_) sparse_ldlt_ = std::make_unique<std::remove_reference_t<decltype(*sparse_ldlt_)>>();
+  if (!analysed_) {
+    sparse_ldlt_->analyzePattern(sparse_a_);
+    analysed_ = true;
+  }
+  sparse_ldlt_->setShift(shift_);
+  sparse_ldlt_->factorize(sparse_a_);
+  const auto d = sparse_ldlt_->vectorD();
+  bool singular = false;
+  for (Eigen::Index r = 0; r < m; ++r) singular |= !(std::abs(d[r]) > kSingular * largest);
+  if (singular && largest > 0.0) {
+    shift_ = kShift * largest;
+    sparse_ldlt_->setShift(shift_);
+    sparse_ldlt_->factorize(sparse_a_);
+  } else if (shift_ != 0.0) {
+    shift_ = 0.0;  // no longer singular: factored exactly again
+    sparse_ldlt_->setShift(0.0);
+    sparse_ldlt_->factorize(sparse_a_);
+  }
+}
+
+void Solver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  if (dense_) {
+    x = dense_ldlt_.solve(b);
+  } else {
+    x = sparse_ldlt_->solve(b);
+  }
+}
+
+void Solver::applyTranspose(const Island& island, const Eigen::VectorXd& lambda, double scale, Eigen::VectorXd& out) const {
+  for (size_t r = 0; r < rows_.size(); ++r) {
+    const double l = scale * lambda[static_cast<Eigen::Index>(r)];
+    const Evaluated& row = rows_[r];
+    for (int i = 0; i < row.count; ++i) {
+      const uint32_t k = row.body[i];
+      if (!isMoving(island, k)) continue;
+      out[3 * k] += island.im[k] * l * row.j[i].x();
+      out[3 * k + 1] += island.im[k] * l * row.j[i].y();
+      out[3 * k + 2] += island.ii[k] * l * row.j[i].z();
+    }
+  }
+}
+
+void Solver::forces(const Island& island, const Eigen::Vector3d* accel, Eigen::Vector3d* force) {
+  const uint32_t n = island.moving;
+  for (uint32_t k = 0; k < n; ++k) force[k].setZero();
+  // Springs first: their accelerations are part of what the constraints answer.
+  spring_force_.assign(island.springs.size(), 0.0);
+  const Rot* rot = island.springs.empty() ? nullptr : place(island);
+  for (size_t q = 0; q < island.springs.size(); ++q) {
+    const Spring& s = island.springs[q];
+    Evaluated e[2];
+    for (int i = 0; i < s.dimension; ++i) e[i] = evaluate(s.coordinate[i], island.states.data(), rot);
+    // K = J M⁻¹ Jᵀ of the spring's coordinates.
+    double k[2][2] = {{0.0, 0.0}, {0.0, 0.0}};
+    for (int p = 0; p < s.dimension; ++p)
+      for (int r = 0; r < s.dimension; ++r)
+        for (int x = 0; x < e[p].count; ++x)
+          for (int y = 0; y < e[r].count; ++y)
+            if (e[p].body[x] == e[r].body[y] && isMoving(island, e[p].body[x]))
+              k[p][r] += weighted(e[p].j[x], e[r].j[y], island.im[e[p].body[x]], island.ii[e[p].body[x]]);
+    const double omega = 2.0 * std::numbers::pi * s.hertz;
+    double g[2];
+    for (int i = 0; i < s.dimension; ++i)
+      g[i] = -(omega * omega * (e[i].x - s.rest[i]) + 2.0 * s.damping_ratio * omega * e[i].xdot);
+    double f[2] = {0.0, 0.0};
+    if (s.dimension == 1) {
+      f[0] = k[0][0] > 0.0 ? std::clamp(g[0] / k[0][0], -s.max_force, s.max_force) : 0.0;
+    } else {
+      const double det = k[0][0] * k[1][1] - k[0][1] * k[1][0];
+      if (det > 0.0) {
+        f[0] = (k[1][1] * g[0] - k[0][1] * g[1]) / det;
+        f[1] = (k[0][0] * g[1] - k[1][0] * g[0]) / det;
+      }
+    }
+    spring_force_[q] = f[0];
+    for (int i = 0; i < s.dimension; ++i)
+      for (int x = 0; x < e[i].count; ++x)
+        if (isMoving(island, e[i].body[x])) force[e[i].body[x]] += f[i] * e[i].j[x];
+  }
+  const size_t m = island.equalities.size();
+  if (m == 0) {
+    lambda_.resize(0);
+    return;
+  }
+  evaluateRows(island);
+  // J a + J̇ v with a the accelerations from every other force and the springs.
+  rhs_.resize(static_cast<Eigen::Index>(m));
+  for (size_t r = 0; r < m; ++r) {
+    const Evaluated& row = rows_[r];
+    double ja = row.jdotv;
+    for (int i = 0; i < row.count; ++i) {
+      const uint32_t b = row.body[i];
+      if (!isMoving(island, b)) continue;
+      const Eigen::Vector3d a(accel[b].x() + island.im[b] * force[b].x(), accel[b].y() + island.im[b] * force[b].y(),
+                              accel[b].z() + island.ii[b] * force[b].z());
+      ja += row.j[i].dot(a);
+    }
+    rhs_[static_cast<Eigen::Index>(r)] = -ja;
+  }
+  factor(island);
+  solve(rhs_, lambda_);
+  for (size_t r = 0; r < m; ++r) {
+    const double l = lambda_[static_cast<Eigen::Index>(r)];
+    const Evaluated& row = rows_[r];
+    for (int i = 0; i < row.count; ++i)
+      if (isMoving(island, row.body[i])) force[row.body[i]] += l * row.j[i];
+  }
+}
+
+double Solver::residual(const Island& island) {
+  const Rot* rot = place(island);
+  double largest = 0.0;
+  for (const Equality& e : island.equalities)
+    largest = std::max(largest, std::abs(evaluate(e.coordinate, island.states.data(), rot).x - e.target));
+  return largest;
+}
+
+double Solver::velocityResidual(const Island& island) {
+  const Rot* rot = place(island);
+  double largest = 0.0;
+  for (const Equality& e : island.equalities)
+    largest = std::max(largest, std::abs(evaluate(e.coordinate, island.states.data(), rot).xdot));
+  return largest;
+}
+
+Projection Solver::project(Island& island, double tolerance) {
+  Projection result;
+  const size_t m = island.equalities.size();
+  const Eigen::Index rows = static_cast<Eigen::Index>(m);
+  impulse_.setZero(rows);
+  if (m == 0) return result;
+  // A and J at the step's end, kept for the Newton iterations while they converge (simplified
+  // Newton: the error after a step's drift falls by a factor of the drift per iteration); when an
+  // iteration does not halve the error (a long step's large drift; a long chain, whose A is
+  // ill-conditioned, corrects a small gap with large motions), A and J are taken again where the
+  // bodies are (Newton's method). A step that would raise the error is shortened (halved up to six
+  // times, a backtracking line search: far from the joints the linearisation overshoots); when
+  // even that does not lower it, round-off is reached.
+  evaluateRows(island);
+  factor(island);
+  rhs_.resize(rows);
+  start_.resize(island.moving);
+  const auto largestError = [&](bool fill) {
+    const Rot* rot = place(island);
+    double largest = 0.0;
+    for (size_t r = 0; r < m; ++r) {
+      const double g = evaluate(island.equalities[r].coordinate, island.states.data(), rot).x - island.equalities[r].target;
+      if (fill) rhs_[static_cast<Eigen::Index>(r)] = -g;
+      largest = std::max(largest, std::abs(g));
+    }
+    return largest;
+  };
+  double largest = largestError(true);
+  result.drift = result.residual = largest;
+  bool fresh = true;  // the factorisation in use was taken where the bodies are
+  for (int it = 0; it < kMaxNewton && largest > tolerance; ++it) {
+    solve(rhs_, lambda_);
+    dq_.setZero(3 * static_cast<Eigen::Index>(island.moving));
+    applyTranspose(island, lambda_, 1.0, dq_);
+    for (uint32_t k = 0; k < island.moving; ++k) start_[k] = island.states[k];
+    double next = largest, fraction = 1.0;
+    for (int halving = 0; halving <= 6; ++halving, fraction *= 0.5) {
+      for (uint32_t k = 0; k < island.moving; ++k) {
+        island.states[k].c = start_[k].c + fraction * Vec2(dq_[3 * k], dq_[3 * k + 1]);
+        island.states[k].angle = start_[k].angle + fraction * dq_[3 * k + 2];
+      }
+      next = largestError(true);
+      if (next < largest) break;
+    }
+    if (!(next < largest)) {
+      for (uint32_t k = 0; k < island.moving; ++k) island.states[k] = start_[k];
+      largestError(true);
+      if (fresh) break;  // Newton's own step, shortened, does not lower it: round-off
+      evaluateRows(island);
+      factor(island);
+      fresh = true;
+      continue;
+    }
+    ++result.iterations;
+    const bool halved = next < 0.5 * largest;
+    largest = next;
+    result.residual = largest;
+    if (!halved && largest > tolerance) {
+      evaluateRows(island);  // not converging as simplified Newton: Newton's method from here
+      factor(island);
+      fresh = true;
+    } else {
+      fresh = false;
+    }
+  }
+  // Velocities tangent to the constraints where the bodies now are (J at the projected
+  // positions; A from the last factorisation, so a second pass takes the O(h^{p+1})-small
+  // remainder).
+  velocityPasses(island);
+  return result;
+}
+
+void Solver::projectVelocities(Island& island) {
+  const Eigen::Index rows = static_cast<Eigen::Index>(island.equalities.size());
+  impulse_.setZero(rows);
+  if (rows == 0) return;
+  evaluateRows(island);
+  factor(island);
+  rhs_.resize(rows);
+  velocityPasses(island);
+}
+
+void Solver::velocityPasses(Island& island) {
+  const size_t m = island.equalities.size();
+  impulse_.setZero(static_cast<Eigen::Index>(m));
+  const Rot* rot = place(island);  // the positions do not change here
+  for (int pass = 0; pass < 2; ++pass) {
+    for (size_t r = 0; r < m; ++r) {
+      rows_[r] = evaluate(island.equalities[r].coordinate, island.states.data(), rot);
+      rhs_[static_cast<Eigen::Index>(r)] = -rows_[r].xdot;
+    }
+    solve(rhs_, lambda_);
+    impulse_ += lambda_;
+    dq_.setZero(3 * static_cast<Eigen::Index>(island.moving));
+    applyTranspose(island, lambda_, 1.0, dq_);
+    for (uint32_t k = 0; k < island.moving; ++k) {
+      island.states[k].v += Vec2(dq_[3 * k], dq_[3 * k + 1]);
+      island.states[k].w += dq_[3 * k + 2];
+    }
+  }
+}
+
+}  // namespace rigidlab::mechanism
