@@ -470,6 +470,7 @@ local Snapshot = {}
 ---@field iterations integer sequential impulses: velocity passes per step (read/write)
 ---@field substeps integer soft step: sub-steps per step (read/write)
 ---@field sleeping boolean whether still islands fall asleep (read/write; false wakes everything)
+---@field exact_joints boolean whether jointed bodies that touch nothing are integrated with their joints (read/write)
 ---@field time number simulated time, s (read only)
 ---@field step_count integer steps taken (read only)
 ---@field title string the scene's title (read only)
@@ -667,6 +668,7 @@ function Draw:capsule(a, b, radius, color, fill) end
 ---@field iterations? integer sequential impulses: velocity passes per step, default 10
 ---@field substeps? integer soft step: sub-steps per step, 1 to 64, default 8
 ---@field sleeping? boolean default true: islands that stay still for 0.5 s stop being simulated
+---@field exact_joints? boolean default true: jointed bodies that touch nothing are integrated with their joints (the integrator's order, joints held to round-off); false: every joint solved after the integrator by the contact solvers (first order)
 ---@field duration? number length of a headless run, s, default 10
 ---@field camera? {center?: rigidlab.VecLike, height?: number} initial sandbox view, metres
 ---@field memory_limit? number MiB the scene's Lua may allocate, at most the host's cap (256 by default)

@@ -136,6 +136,7 @@ void integrateStep(WorldImpl& w, double t0, double h, const char* only) {
   // interval for some bodies only (`only`) never holds one.
   const char* mechanism = only ? nullptr : mechanismBodies(w);
   const auto stiff = [&](uint32_t i) { return mechanism && mechanism[i] == kStiffMechanism; };
+  if (mechanism) beginMechanismStep(w, t0, h);
   // Body damping (BodyDef::linear_damping, angular_damping): with RK4 a force −c m v, −c_ω I ω
   // evaluated at every stage (body_acceleration.h), so a damped body keeps order 4; with the Euler
   // methods, and with RK4 where h c > 2.5, implicit over the interval on the velocity the interval

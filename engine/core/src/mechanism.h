@@ -77,10 +77,25 @@ struct Evaluated {
 Evaluated evaluate(const Coordinate& c, const State* states, const Rot* rotations);
 void rotationsOf(const std::vector<State>& states, std::vector<Rot>& out);
 
-// A rigid constraint x = target.
+// A rigid constraint x = target, or with `sign` ±1 a one-sided one (a joint limit): sign (x − target)
+// ≥ 0, whose force may only push, sign λ ≥ 0. A one-sided row takes part at a stage only while the
+// coordinate is at its bound (within Island::tolerance) and pushed into it; a bound reached inside a
+// step is met by the projection after it, as an inelastic stop (first order at that instant).
 struct Equality {
   Coordinate coordinate;
   double target = 0.0;
+  double sign = 0.0;
+};
+
+// A motor on a coordinate: drives ẋ towards `speed` with a force of at most `max_force`. Each
+// step (Solver::beginStep) it either reaches its speed, with an impulse of at most max_force · h
+// at the step's start (first order, as the contact solvers' motors), and holds it through the
+// step (ẍ = 0 at every stage, |λ| ≤ max_force), or it pushes with max_force towards it the whole
+// step; a speed reached inside such a step is caught by the projection after it (ẋ = speed).
+struct Motor {
+  Coordinate coordinate;
+  double speed = 0.0;
+  double max_force = 0.0;
 };
 
 // A spring on one coordinate, or on two solved as one 2-vector (a soft weld's anchors: the 2×2
@@ -95,13 +110,16 @@ struct Spring {
 
 // An island: its bodies (the moving ones first, then the fixed ones, whose inverse masses are
 // zero and whose states the caller keeps current: static, asleep, kinematic, the world) and what
-// joins them.
+// joins them. `tolerance` [m, rad] and `speed_tolerance` [m/s, rad/s]: how close to its bound a
+// limit is "at" it, and to its speed a motor.
 struct Island {
   std::vector<State> states;
   std::vector<double> im, ii;  // per body
   uint32_t moving = 0;
   std::vector<Equality> equalities;
+  std::vector<Motor> motors;
   std::vector<Spring> springs;
+  double tolerance = 1e-9, speed_tolerance = 1e-9;
 };
 
 // How a projection went: the largest |g| before it (the step's drift, an estimate of its local
@@ -120,21 +138,29 @@ class Solver {
  public:
   static constexpr int kDenseRows = 48;
 
-  // The spring and constraint forces on the moving bodies at the island's states: `accel` holds
-  // each moving body's acceleration (a_x, a_y, α) from every other force; `force` receives the
-  // generalised force (F_x, F_y, τ) the springs and constraints add. Afterwards multiplier(k) is
-  // equality k's λ and springForce(k) spring k's force (first component).
+  // The spring, constraint and motor forces on the moving bodies at the island's states: `accel`
+  // holds each moving body's acceleration (a_x, a_y, α) from every other force; `force` receives
+  // the generalised force (F_x, F_y, τ) they add. Which one-sided rows push and which motors hold
+  // is found by an active set: a row whose λ has the wrong sign is let go, a motor past its force
+  // pushes with its force, and the rest solved again. Afterwards multiplier(k) is row k's λ
+  // (equalities, then motors) and springForce(k) spring k's force (first component).
   void forces(const Island& island, const Eigen::Vector3d* accel, Eigen::Vector3d* force);
 
   // Projects the moving bodies' positions, then velocities, onto the equalities (the island's
-  // states are updated). `tolerance`: |g| at which Newton stops [m, rad]. Afterwards
-  // impulse(k) is the impulse [N·s] equality k applied to make the velocities tangent: the
-  // O(h^{p+1}) remainder after a step; after an edit between steps (an applied impulse, a velocity
-  // set), the joints' answer to it, as rigid joints answer a blow.
+  // states are updated): the equalities, the limits the positions pass, then the velocities onto
+  // the equalities, the limits they run into and the motors at or past their speed since the last
+  // markStart. `tolerance`: |g| at which Newton stops [m, rad]. Afterwards impulse(k) is the impulse
+  // [N·s] row k applied to the velocities: the O(h^{p+1}) remainder after a step, a limit's stop,
+  // a motor's catch; after an edit between steps (an applied impulse, a velocity set), the joints'
+  // answer to it, as rigid joints answer a blow.
   Projection project(Island& island, double tolerance);
 
-  // The velocities alone onto the equalities where the bodies are (impulse(k) as after project).
+  // The velocities alone onto the rows where the bodies are (impulse(k) as after project).
   void projectVelocities(Island& island);
+  // At the start of a step of length h: which motors reach their speed in it (caught now, the
+  // velocities changed, impulse(k) as after project) and which push; project() catches a pushing
+  // motor whose rate crossed its speed during the step.
+  void beginStep(Island& island, double h);
 
   double multiplier(size_t k) const { return lambda_[static_cast<Eigen::Index>(k)]; }
   double impulse(size_t k) const { return impulse_[static_cast<Eigen::Index>(k)]; }
@@ -144,9 +170,12 @@ class Solver {
   double velocityResidual(const Island& island);
 
  private:
-  // J at the states into rows_ (and x, ẋ, J̇v); builds the structure when it changed.
+  // J at the states into rows_ (and x, ẋ, J̇v): the equalities, then the motors; builds the
+  // structure when it changed.
   void evaluateRows(const Island& island);
   void structure(const Island& island);
+  // A = J M⁻¹ Jᵀ over the rows in use_ (a row out of use has A's row and column of the identity,
+  // so its λ is its right-hand side, kept 0), factored.
   void factor(const Island& island);
   // Two passes v ← v − M⁻¹ Jᵀ A⁻¹ J v with J where the bodies are and the last factorisation.
   void velocityPasses(Island& island);
@@ -176,6 +205,11 @@ class Solver {
   bool analysed_ = false;
   double shift_ = 0.0;  // regularisation used when A is singular (redundant constraints)
   Eigen::VectorXd rhs_, lambda_, dq_, impulse_;
+  std::vector<char> use_;            // per row: in the current factorisation
+  std::vector<char> used_;           // the use_ of the last factorisation
+  std::vector<double> motor_rate_;   // per motor: ẋ − speed at beginStep
+  std::vector<int8_t> motor_mode_;   // per motor, this step: 0 holds its speed, ±1 pushes that way
+  std::vector<double> motor_force_;  // per motor: the force it pushes with when out of use (0: none)
   std::vector<State> start_;  // the states a Newton step starts from (its line search)
   std::vector<Rot> rot_;      // R(θ) of each body at the island's states, as last placed
   const Rot* place(const Island& island) {

@@ -34,14 +34,15 @@ double weighted(const Eigen::Vector3d& jr, const Eigen::Vector3d& js, double im,
 }  // namespace
 
 void Solver::evaluateRows(const Island& island) {
-  const size_t m = island.equalities.size();
-  rows_.resize(m);
+  const size_t m = island.equalities.size(), n = m + island.motors.size();
+  rows_.resize(n);
   // The structure is each row's moving bodies, in order: when it is the one the factorisation was
   // set up for, its analysis is kept.
   signature_now_.clear();
   const Rot* rot = place(island);
-  for (size_t k = 0; k < m; ++k) {
-    const Evaluated& r = rows_[k] = evaluate(island.equalities[k].coordinate, island.states.data(), rot);
+  for (size_t k = 0; k < n; ++k) {
+    const Coordinate& c = k < m ? island.equalities[k].coordinate : island.motors[k - m].coordinate;
+    const Evaluated& r = rows_[k] = evaluate(c, island.states.data(), rot);
     const size_t at = signature_now_.size();
     signature_now_.push_back(0);
     for (int i = 0; i < r.count; ++i)
@@ -50,6 +51,7 @@ void Solver::evaluateRows(const Island& island) {
         ++signature_now_[at];
       }
   }
+  use_.resize(n, 1);
   if (signature_now_ != signature_ || !built_) {
     signature_.swap(signature_now_);
     structure(island);
@@ -82,6 +84,7 @@ void Solver::structure(const Island& island) {
   dense_ = m <= static_cast<size_t>(kDenseRows);
   analysed_ = false;
   shift_ = 0.0;
+  used_.clear();
   if (dense_) {
     dense_a_.setZero(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(m));
     return;
@@ -104,12 +107,17 @@ void Solver::structure(const Island& island) {
 
 void Solver::factor(const Island& island) {
   const Eigen::Index m = static_cast<Eigen::Index>(rows_.size());
+  used_ = use_;
   double largest = 0.0;
   if (dense_) {
     dense_a_.setZero(m, m);
     for (const Entry& e : entries_)
-      dense_a_(e.r, e.s) += weighted(rows_[e.r].j[e.jr], rows_[e.s].j[e.js], island.im[e.body], island.ii[e.body]);
-    for (Eigen::Index r = 0; r < m; ++r) largest = std::max(largest, dense_a_(r, r));
+      if (use_[e.r] && use_[e.s])
+        dense_a_(e.r, e.s) += weighted(rows_[e.r].j[e.jr], rows_[e.s].j[e.js], island.im[e.body], island.ii[e.body]);
+    for (Eigen::Index r = 0; r < m; ++r) {
+      if (!use_[r]) dense_a_(r, r) = 1.0;
+      largest = std::max(largest, dense_a_(r, r));
+    }
     dense_ldlt_.compute(dense_a_);
     const auto d = dense_ldlt_.vectorD();
     bool singular = false;
@@ -123,8 +131,12 @@ void Solver::factor(const Island& island) {
   double* values = sparse_a_.valuePtr();
   std::fill(values, values + sparse_a_.nonZeros(), 0.0);
   for (const Entry& e : entries_)
-    values[e.value] += weighted(rows_[e.r].j[e.jr], rows_[e.s].j[e.js], island.im[e.body], island.ii[e.body]);
-  for (Eigen::Index r = 0; r < m; ++r) largest = std::max(largest, sparse_a_.coeff(r, r));
+    if (use_[e.r] && use_[e.s])
+      values[e.value] += weighted(rows_[e.r].j[e.jr], rows_[e.s].j[e.js], island.im[e.body], island.ii[e.body]);
+  for (Eigen::Index r = 0; r < m; ++r) {
+    if (!use_[r]) sparse_a_.coeffRef(r, r) = 1.0;
+    largest = std::max(largest, sparse_a_.coeff(r, r));
+  }
   if (!sparse_ldlt_) sparse_ldlt_ = std::make_unique<std::remove_reference_t<decltype(*sparse_ldlt_)>>();
   if (!analysed_) {
     sparse_ldlt_->analyzePattern(sparse_a_);
@@ -156,6 +168,7 @@ void Solver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
 
 void Solver::applyTranspose(const Island& island, const Eigen::VectorXd& lambda, double scale, Eigen::VectorXd& out) const {
   for (size_t r = 0; r < rows_.size(); ++r) {
+    if (!use_[r]) continue;
     const double l = scale * lambda[static_cast<Eigen::Index>(r)];
     const Evaluated& row = rows_[r];
     for (int i = 0; i < row.count; ++i) {
@@ -205,41 +218,93 @@ void Solver::forces(const Island& island, const Eigen::Vector3d* accel, Eigen::V
       for (int x = 0; x < e[i].count; ++x)
         if (isMoving(island, e[i].body[x])) force[e[i].body[x]] += f[i] * e[i].j[x];
   }
-  const size_t m = island.equalities.size();
-  if (m == 0) {
-    lambda_.resize(0);
-    return;
-  }
+  const size_t m = island.equalities.size(), rows = m + island.motors.size();
+  lambda_.setZero(static_cast<Eigen::Index>(rows));
+  if (rows == 0) return;
   evaluateRows(island);
-  // J a + J̇ v with a the accelerations from every other force and the springs.
-  rhs_.resize(static_cast<Eigen::Index>(m));
+  // Which rows take part: equalities always; a limit while at its bound; a motor while at its
+  // speed (else it pushes with its whole force towards it).
+  motor_force_.assign(island.motors.size(), 0.0);
   for (size_t r = 0; r < m; ++r) {
-    const Evaluated& row = rows_[r];
-    double ja = row.jdotv;
-    for (int i = 0; i < row.count; ++i) {
-      const uint32_t b = row.body[i];
-      if (!isMoving(island, b)) continue;
-      const Eigen::Vector3d a(accel[b].x() + island.im[b] * force[b].x(), accel[b].y() + island.im[b] * force[b].y(),
-                              accel[b].z() + island.ii[b] * force[b].z());
-      ja += row.j[i].dot(a);
-    }
-    rhs_[static_cast<Eigen::Index>(r)] = -ja;
+    const Equality& e = island.equalities[r];
+    use_[r] = e.sign == 0.0 || std::abs(rows_[r].x - e.target) <= island.tolerance;
   }
-  factor(island);
-  solve(rhs_, lambda_);
-  for (size_t r = 0; r < m; ++r) {
+  motor_mode_.resize(island.motors.size(), 0);
+  for (size_t q = 0; q < island.motors.size(); ++q) {
+    use_[m + q] = motor_mode_[q] == 0;
+    motor_force_[q] = motor_mode_[q] * island.motors[q].max_force;
+  }
+  rhs_.resize(static_cast<Eigen::Index>(rows));
+  // J a + J̇ v with a the accelerations from every other force, the springs and the motors that push.
+  const auto motorForces = [&](Eigen::Vector3d* f) {
+    for (size_t q = 0; q < island.motors.size(); ++q) {
+      if (motor_force_[q] == 0.0) continue;
+      const Evaluated& row = rows_[m + q];
+      for (int i = 0; i < row.count; ++i)
+        if (isMoving(island, row.body[i])) f[row.body[i]] += motor_force_[q] * row.j[i];
+    }
+  };
+  for (size_t round = 0; round <= rows; ++round) {
+    for (size_t r = 0; r < rows; ++r) {
+      const Evaluated& row = rows_[r];
+      double ja = row.jdotv;
+      for (int i = 0; i < row.count; ++i) {
+        const uint32_t b = row.body[i];
+        if (!isMoving(island, b)) continue;
+        Eigen::Vector3d f = force[b];
+        for (size_t q = 0; q < island.motors.size(); ++q) {
+          if (motor_force_[q] == 0.0) continue;
+          const Evaluated& mrow = rows_[m + q];
+          for (int k2 = 0; k2 < mrow.count; ++k2)
+            if (mrow.body[k2] == b) f += motor_force_[q] * mrow.j[k2];
+        }
+        const Eigen::Vector3d a(accel[b].x() + island.im[b] * f.x(), accel[b].y() + island.im[b] * f.y(),
+                                accel[b].z() + island.ii[b] * f.z());
+        ja += row.j[i].dot(a);
+      }
+      rhs_[static_cast<Eigen::Index>(r)] = use_[r] ? -ja : 0.0;
+    }
+    factor(island);
+    solve(rhs_, lambda_);
+    // A limit that pulls lets go; a motor past its force pushes with it; then again.
+    bool changed = false;
+    for (size_t r = 0; r < m; ++r) {
+      const double sign = island.equalities[r].sign;
+      if (use_[r] && sign != 0.0 && lambda_[static_cast<Eigen::Index>(r)] * sign < 0.0) {
+        use_[r] = 0;
+        changed = true;
+      }
+    }
+    for (size_t q = 0; q < island.motors.size(); ++q) {
+      const double l = lambda_[static_cast<Eigen::Index>(m + q)], max = island.motors[q].max_force;
+      if (use_[m + q] && std::abs(l) > max) {
+        use_[m + q] = 0;
+        motor_force_[q] = l > 0.0 ? max : -max;
+        changed = true;
+      }
+    }
+    if (!changed) break;
+  }
+  for (size_t r = 0; r < rows; ++r) {
+    if (!use_[r]) {
+      lambda_[static_cast<Eigen::Index>(r)] = r >= m ? motor_force_[r - m] : 0.0;
+      continue;
+    }
     const double l = lambda_[static_cast<Eigen::Index>(r)];
     const Evaluated& row = rows_[r];
     for (int i = 0; i < row.count; ++i)
       if (isMoving(island, row.body[i])) force[row.body[i]] += l * row.j[i];
   }
+  motorForces(force);
 }
 
 double Solver::residual(const Island& island) {
   const Rot* rot = place(island);
   double largest = 0.0;
-  for (const Equality& e : island.equalities)
-    largest = std::max(largest, std::abs(evaluate(e.coordinate, island.states.data(), rot).x - e.target));
+  for (const Equality& e : island.equalities) {
+    const double g = evaluate(e.coordinate, island.states.data(), rot).x - e.target;
+    largest = std::max(largest, e.sign == 0.0 ? std::abs(g) : std::max(0.0, -e.sign * g));
+  }
   return largest;
 }
 
@@ -247,16 +312,49 @@ double Solver::velocityResidual(const Island& island) {
   const Rot* rot = place(island);
   double largest = 0.0;
   for (const Equality& e : island.equalities)
-    largest = std::max(largest, std::abs(evaluate(e.coordinate, island.states.data(), rot).xdot));
+    if (e.sign == 0.0) largest = std::max(largest, std::abs(evaluate(e.coordinate, island.states.data(), rot).xdot));
   return largest;
+}
+
+void Solver::beginStep(Island& island, double h) {
+  const size_t m = island.equalities.size(), rows = m + island.motors.size();
+  impulse_.setZero(static_cast<Eigen::Index>(rows));
+  motor_mode_.assign(island.motors.size(), 0);
+  motor_rate_.resize(island.motors.size());
+  if (island.motors.empty()) return;
+  evaluateRows(island);
+  bool catches = false;
+  for (size_t q = 0; q < island.motors.size(); ++q) {
+    const Motor& mo = island.motors[q];
+    const Evaluated& row = rows_[m + q];
+    const double off = mo.speed - row.xdot;
+    // What it takes to reach its speed alone: |Δẋ| / (J M⁻¹ Jᵀ).
+    double k = 0.0;
+    for (int i = 0; i < row.count; ++i)
+      if (isMoving(island, row.body[i])) k += weighted(row.j[i], row.j[i], island.im[row.body[i]], island.ii[row.body[i]]);
+    const bool reaches = std::abs(off) <= island.speed_tolerance || (k > 0.0 && std::abs(off) / k <= mo.max_force * h);
+    motor_mode_[q] = reaches ? 0 : (off > 0.0 ? 1 : -1);
+    catches |= reaches && std::abs(off) > island.speed_tolerance;
+    motor_rate_[q] = -off;
+  }
+  if (catches) velocityPasses(island);  // the catches, with the joints and limits holding
 }
 
 Projection Solver::project(Island& island, double tolerance) {
   Projection result;
-  const size_t m = island.equalities.size();
-  const Eigen::Index rows = static_cast<Eigen::Index>(m);
-  impulse_.setZero(rows);
-  if (m == 0) return result;
+  const size_t m = island.equalities.size(), rows = m + island.motors.size();
+  impulse_.setZero(static_cast<Eigen::Index>(rows));
+  if (rows == 0) return result;
+  // Positions: the equalities, and the limits the bodies are at or past (put back at their bound).
+  evaluateRows(island);
+  const auto positionRows = [&] {
+    for (size_t r = 0; r < m; ++r) {
+      const Equality& e = island.equalities[r];
+      use_[r] = e.sign == 0.0 || e.sign * (rows_[r].x - e.target) <= island.tolerance;
+    }
+    for (size_t q = 0; q < island.motors.size(); ++q) use_[m + q] = 0;
+  };
+  positionRows();
   // A and J at the step's end, kept for the Newton iterations while they converge (simplified
   // Newton: the error after a step's drift falls by a factor of the drift per iteration); when an
   // iteration does not halve the error (a long step's large drift; a long chain, whose A is
@@ -264,19 +362,28 @@ Projection Solver::project(Island& island, double tolerance) {
   // bodies are (Newton's method). A step that would raise the error is shortened (halved up to six
   // times, a backtracking line search: far from the joints the linearisation overshoots); when
   // even that does not lower it, round-off is reached.
-  evaluateRows(island);
   factor(island);
-  rhs_.resize(rows);
+  rhs_.resize(static_cast<Eigen::Index>(rows));
   start_.resize(island.moving);
   const auto largestError = [&](bool fill) {
     const Rot* rot = place(island);
     double largest = 0.0;
-    for (size_t r = 0; r < m; ++r) {
+    for (size_t r = 0; r < rows; ++r) {
+      if (!use_[r]) {
+        if (fill) rhs_[static_cast<Eigen::Index>(r)] = 0.0;
+        continue;
+      }
       const double g = evaluate(island.equalities[r].coordinate, island.states.data(), rot).x - island.equalities[r].target;
       if (fill) rhs_[static_cast<Eigen::Index>(r)] = -g;
       largest = std::max(largest, std::abs(g));
     }
     return largest;
+  };
+  const auto refactor = [&] {
+    const std::vector<char> keep = use_;
+    evaluateRows(island);
+    use_ = keep;
+    factor(island);
   };
   double largest = largestError(true);
   result.drift = result.residual = largest;
@@ -299,8 +406,7 @@ Projection Solver::project(Island& island, double tolerance) {
       for (uint32_t k = 0; k < island.moving; ++k) island.states[k] = start_[k];
       largestError(true);
       if (fresh) break;  // Newton's own step, shortened, does not lower it: round-off
-      evaluateRows(island);
-      factor(island);
+      refactor();
       fresh = true;
       continue;
     }
@@ -309,40 +415,61 @@ Projection Solver::project(Island& island, double tolerance) {
     largest = next;
     result.residual = largest;
     if (!halved && largest > tolerance) {
-      evaluateRows(island);  // not converging as simplified Newton: Newton's method from here
-      factor(island);
+      refactor();  // not converging as simplified Newton: Newton's method from here
       fresh = true;
     } else {
       fresh = false;
     }
   }
-  // Velocities tangent to the constraints where the bodies now are (J at the projected
-  // positions; A from the last factorisation, so a second pass takes the O(h^{p+1})-small
-  // remainder).
+  // Velocities tangent to the rows where the bodies now are.
   velocityPasses(island);
   return result;
 }
 
 void Solver::projectVelocities(Island& island) {
-  const Eigen::Index rows = static_cast<Eigen::Index>(island.equalities.size());
+  const Eigen::Index rows = static_cast<Eigen::Index>(island.equalities.size() + island.motors.size());
   impulse_.setZero(rows);
   if (rows == 0) return;
-  evaluateRows(island);
-  factor(island);
   rhs_.resize(rows);
   velocityPasses(island);
 }
 
 void Solver::velocityPasses(Island& island) {
-  const size_t m = island.equalities.size();
-  impulse_.setZero(static_cast<Eigen::Index>(m));
-  const Rot* rot = place(island);  // the positions do not change here
-  for (int pass = 0; pass < 2; ++pass) {
-    for (size_t r = 0; r < m; ++r) {
-      rows_[r] = evaluate(island.equalities[r].coordinate, island.states.data(), rot);
-      rhs_[static_cast<Eigen::Index>(r)] = -rows_[r].xdot;
+  const size_t m = island.equalities.size(), rows = m + island.motors.size();
+  impulse_.setZero(static_cast<Eigen::Index>(rows));
+  rhs_.resize(static_cast<Eigen::Index>(rows));
+  // Which rows: the equalities; a limit at its bound that the velocities run into (an inelastic
+  // stop); a motor at its speed, or whose rate crossed it since markStart (caught at its speed).
+  evaluateRows(island);
+  motor_rate_.resize(island.motors.size(), 0.0);
+  for (size_t r = 0; r < m; ++r) {
+    const Equality& e = island.equalities[r];
+    use_[r] = e.sign == 0.0 ||
+              (e.sign * (rows_[r].x - e.target) <= island.tolerance && e.sign * rows_[r].xdot < 0.0);
+  }
+  motor_mode_.resize(island.motors.size(), 0);
+  for (size_t q = 0; q < island.motors.size(); ++q) {
+    const double off = rows_[m + q].xdot - island.motors[q].speed;
+    use_[m + q] = motor_mode_[q] == 0 || off * motor_rate_[q] <= 0.0;
+  }
+  // A and J where the bodies are; a second pass takes the remainder of the first's round-off. A
+  // limit whose impulse would pull lets go.
+  for (int pass = 0; pass < 3; ++pass) {
+    if (pass == 0 || used_ != use_) factor(island);
+    for (size_t r = 0; r < rows; ++r) {
+      const double target = r < m ? 0.0 : island.motors[r - m].speed;
+      rhs_[static_cast<Eigen::Index>(r)] = use_[r] ? target - rows_[r].xdot : 0.0;
     }
     solve(rhs_, lambda_);
+    bool released = false;
+    for (size_t r = 0; r < m; ++r) {
+      const double sign = island.equalities[r].sign;
+      if (use_[r] && sign != 0.0 && (impulse_[static_cast<Eigen::Index>(r)] + lambda_[static_cast<Eigen::Index>(r)]) * sign < 0.0) {
+        use_[r] = 0;
+        released = true;
+      }
+    }
+    if (released) continue;  // solved again without it
     impulse_ += lambda_;
     dq_.setZero(3 * static_cast<Eigen::Index>(island.moving));
     applyTranspose(island, lambda_, 1.0, dq_);
@@ -350,7 +477,13 @@ void Solver::velocityPasses(Island& island) {
       island.states[k].v += Vec2(dq_[3 * k], dq_[3 * k + 1]);
       island.states[k].w += dq_[3 * k + 2];
     }
+    const Rot* rot = place(island);
+    for (size_t r = 0; r < rows; ++r) {
+      const Coordinate& c = r < m ? island.equalities[r].coordinate : island.motors[r - m].coordinate;
+      rows_[r].xdot = evaluate(c, island.states.data(), rot).xdot;
+    }
   }
+  for (size_t q = 0; q < island.motors.size(); ++q) motor_rate_[q] = rows_[m + q].xdot - island.motors[q].speed;
 }
 
 }  // namespace rigidlab::mechanism

@@ -22,6 +22,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "body_acceleration.h"
@@ -36,13 +37,14 @@ struct MechanismStage {
   struct Report {
     uint32_t joint;
     double JointImpulses::*field;
+    double scale = 1.0;  // the field's sign against the row's λ (an upper limit's impulse is −λ)
   };
   struct Exact {
     mechanism::Island island;
     mechanism::Solver solver;
     std::vector<uint32_t> slots;   // island body → body slot (kWorldSlot: the world)
     std::vector<uint32_t> joints;  // joint slots
-    std::vector<Report> equality_report, spring_report;
+    std::vector<Report> equality_report, motor_report, spring_report;
     std::vector<Eigen::Vector3d> accel, force;
     bool joined = false;  // touches something after the narrow phase: joints go to the contact solvers
     // The fastest rate of its springs: ω (1 + 2ζ), the largest |eigenvalue| of a damped spring's
@@ -82,6 +84,8 @@ struct MechanismStage {
 };
 
 namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 uint32_t root(std::vector<uint32_t>& parent, uint32_t i) {
   while (parent[i] != i) i = parent[i] = parent[parent[i]];
@@ -127,7 +131,7 @@ bool modelled(const WorldImpl& w, const Joint& j) {
   switch (d.type) {
     case JointType::Revolute:
     case JointType::Prismatic:
-    case JointType::Wheel: return !d.enable_limit && !d.enable_motor;
+    case JointType::Wheel:
     case JointType::Weld:
     case JointType::Gear: return true;
     case JointType::Pulley: {
@@ -135,8 +139,14 @@ bool modelled(const WorldImpl& w, const Joint& j) {
       const Vec2 pa = anchor(j.a, j.local_a, va), pb = anchor(j.b, j.local_b, vb);
       return clear(pa, va, d.ground_a) && clear(pb, vb, d.ground_b);
     }
-    case JointType::Distance:
-      return !(d.enable_limit && d.min_length < d.max_length) && (d.enable_spring || j.length > 1e-3);
+    case JointType::Distance: {
+      // Its length measures a distance too: a rigid one of (nearly) zero length is a pin without an
+      // angle; a range or a spring is modelled while the anchors stay apart.
+      Vec2 va, vb;
+      const Vec2 pa = anchor(j.a, j.local_a, va), pb = anchor(j.b, j.local_b, vb);
+      const bool range = d.enable_limit && d.min_length < d.max_length;
+      return range || d.enable_spring ? clear(pb, vb, pa) : j.length > 1e-3;
+    }
     case JointType::Motor:
     case JointType::Friction: return false;
   }
@@ -211,8 +221,23 @@ void addJoint(const WorldImpl& w, MechanismStage::Exact& e, uint32_t k, const st
   const uint32_t a = fixedBody(w, e, j.a, local), b = fixedBody(w, e, j.b, local);
   const Vec2 sa = anchorOf(w, j.a, j.local_a), sb = anchorOf(w, j.b, j.local_b);
   const auto equality = [&](const mechanism::Coordinate& c, double target, double JointImpulses::*field) {
-    e.island.equalities.push_back({c, target});
+    e.island.equalities.push_back({c, target, 0.0});
     e.equality_report.push_back({k, field});
+  };
+  // A range lower ≤ x ≤ upper as two one-sided rows (an infinite bound is none).
+  const auto limits = [&](const mechanism::Coordinate& c, double lower, double upper) {
+    if (std::isfinite(lower)) {
+      e.island.equalities.push_back({c, lower, 1.0});
+      e.equality_report.push_back({k, &JointImpulses::lower});
+    }
+    if (std::isfinite(upper)) {
+      e.island.equalities.push_back({c, upper, -1.0});
+      e.equality_report.push_back({k, &JointImpulses::upper, -1.0});
+    }
+  };
+  const auto motor = [&](const mechanism::Coordinate& c, double speed, double max_force) {
+    e.island.motors.push_back({c, speed, max_force});
+    e.motor_report.push_back({k, &JointImpulses::motor});
   };
   const auto spring = [&](const mechanism::Coordinate& c, double rest, double hertz, double damping,
                           double JointImpulses::*field) {
@@ -256,6 +281,8 @@ void addJoint(const WorldImpl& w, MechanismStage::Exact& e, uint32_t k, const st
     case JointType::Revolute:
       point(false, 0.0, 0.0);
       if (spring_on) spring(coordinate(angle), 0.0, d.spring_hertz, d.spring_damping, &JointImpulses::spring);
+      if (d.enable_limit) limits(coordinate(angle), d.lower, d.upper);
+      if (d.enable_motor) motor(coordinate(angle), d.motor_speed, d.max_motor_torque);
       break;
     case JointType::Weld:
       if (d.angular_hertz > 0.0) {
@@ -270,15 +297,20 @@ void addJoint(const WorldImpl& w, MechanismStage::Exact& e, uint32_t k, const st
       equality(along(cross(1.0, j.local_axis)), 0.0, &JointImpulses::perpendicular);
       if (d.type == JointType::Prismatic) equality(coordinate(angle), 0.0, &JointImpulses::angular);
       if (spring_on) spring(along(j.local_axis), 0.0, d.spring_hertz, d.spring_damping, &JointImpulses::spring);
+      if (d.enable_limit) limits(along(j.local_axis), d.lower, d.upper);
+      if (d.enable_motor && d.type == JointType::Prismatic) motor(along(j.local_axis), d.motor_speed, d.max_motor_force);
+      if (d.enable_motor && d.type == JointType::Wheel) motor(coordinate(angle), d.motor_speed, d.max_motor_torque);
       break;
     case JointType::Distance: {
       const mechanism::Coordinate c = coordinate(term(Measure::Distance, a, b, sa, sb));
+      const bool range = d.enable_limit && d.min_length < d.max_length;
       if (spring_on) {
         spring(c, j.length, d.spring_hertz, d.spring_damping, &JointImpulses::axial);
         e.island.springs.back().max_force = d.max_spring_force;
-      } else {
+      } else if (!range) {
         equality(c, d.enable_limit ? d.min_length : j.length, &JointImpulses::axial);
       }
+      if (range) limits(c, d.min_length > 0.0 ? d.min_length : -kInfinity, d.max_length);
       break;
     }
     case JointType::Pulley: {
@@ -355,6 +387,21 @@ void reactionFrame(const WorldImpl& w, Joint& j) {
   }
 }
 
+// Adds value(row) × scale to the joints' impulse fields the island's rows report into (its
+// equalities and limits, then its motors).
+template <typename Value>
+void report(WorldImpl& w, const MechanismStage::Exact& e, double scale, Value value) {
+  const size_t m = e.equality_report.size();
+  for (size_t r = 0; r < m; ++r) {
+    const MechanismStage::Report& to = e.equality_report[r];
+    w.joints[to.joint].impulses.*to.field += to.scale * scale * value(r);
+  }
+  for (size_t q = 0; q < e.motor_report.size(); ++q) {
+    const MechanismStage::Report& to = e.motor_report[q];
+    w.joints[to.joint].impulses.*to.field += to.scale * scale * value(m + q);
+  }
+}
+
 // The island's bodies as they are now (fixed ones at time t).
 void gather(const WorldImpl& w, MechanismStage::Exact& e, const MechanismStage& m, double t, double& scale,
             double& speed) {
@@ -388,8 +435,7 @@ void project(WorldImpl& w, MechanismStage& m, MechanismStage::Exact& e, double t
     b.velocity = s.v;
     b.angular_velocity = s.w;
   }
-  for (size_t r = 0; r < e.equality_report.size(); ++r)
-    w.joints[e.equality_report[r].joint].impulses.*e.equality_report[r].field += e.solver.impulse(r);
+  report(w, e, 1.0, [&](size_t r) { return e.solver.impulse(r); });
 }
 
 }  // namespace
@@ -481,9 +527,11 @@ void chooseMechanisms(WorldImpl& w) {
       e.island.im.clear();
       e.island.ii.clear();
       e.island.equalities.clear();
+      e.island.motors.clear();
       e.island.springs.clear();
       e.island.moving = 0;
       e.equality_report.clear();
+      e.motor_report.clear();
       e.spring_report.clear();
       e.joined = false;
       e.spring_rate = 0.0;
@@ -542,6 +590,10 @@ void chooseMechanisms(WorldImpl& w) {
     // that the last step projected) is left as it is.
     double scale, speed;
     gather(w, e, m, m.step_start, scale, speed);
+    // A limit is at its bound, a motor at its speed, within a few units in the last place that
+    // the projections leave.
+    e.island.tolerance = 1e-9 * scale;
+    e.island.speed_tolerance = 1e-9 * speed;
     if (e.solver.residual(e.island) > 0x1p-40 * scale || e.solver.velocityResidual(e.island) > 0x1p-40 * speed) {
       project(w, m, e, m.step_start);
       for (uint32_t k = 0; k < e.island.moving; ++k) WorldImpl::syncTransform(w.bodies[e.slots[k]]);
@@ -647,10 +699,26 @@ void addMechanismForces(WorldImpl& w, double t, double weight, double h, bool st
     }
     // The joints' impulses: ∫ λ dt over the step, as the integrator weighs its stages.
     const double share = weight * h;
-    for (size_t r = 0; r < e.equality_report.size(); ++r)
-      w.joints[e.equality_report[r].joint].impulses.*e.equality_report[r].field += share * e.solver.multiplier(r);
+    report(w, e, share, [&](size_t r) { return e.solver.multiplier(r); });
     for (size_t r = 0; r < e.spring_report.size(); ++r)
       w.joints[e.spring_report[r].joint].impulses.*e.spring_report[r].field += share * e.solver.springForce(r);
+  }
+}
+
+void beginMechanismStep(WorldImpl& w, double t0, double h) {
+  MechanismStage& m = w.mechanisms.get();
+  for (size_t q = 0; q < m.count; ++q) {
+    MechanismStage::Exact& e = m.islands[q];
+    if (e.island.motors.empty()) continue;
+    double scale, speed;
+    gather(w, e, m, t0, scale, speed);
+    e.solver.beginStep(e.island, h);
+    for (uint32_t k = 0; k < e.island.moving; ++k) {
+      Body& b = w.bodies[e.slots[k]];
+      b.velocity = e.island.states[k].v;
+      b.angular_velocity = e.island.states[k].w;
+    }
+    report(w, e, 1.0, [&](size_t r) { return e.solver.impulse(r); });
   }
 }
 
@@ -672,8 +740,7 @@ void stepStiffMechanisms(WorldImpl& w, double t0, double h) {
     double scale, speed;
     gather(w, e, m, t0, scale, speed);
     e.solver.projectVelocities(e.island);
-    for (size_t r = 0; r < e.equality_report.size(); ++r)
-      w.joints[e.equality_report[r].joint].impulses.*e.equality_report[r].field += e.solver.impulse(r);
+    report(w, e, 1.0, [&](size_t r) { return e.solver.impulse(r); });
     for (uint32_t k = 0; k < e.island.moving; ++k) {
       Body& b = w.bodies[e.slots[k]];
       b.velocity = e.island.states[k].v;
@@ -754,6 +821,9 @@ void finishMechanisms(WorldImpl& w) {
       p.perpendicular += s * x.perpendicular;
       p.axial += s * x.axial;
       p.spring += s * x.spring;
+      p.motor += s * x.motor;
+      p.lower += s * x.lower;
+      p.upper += s * x.upper;
       if (j.impulse_h <= 0.0) j.impulse_h = w.dt;
     }
   }

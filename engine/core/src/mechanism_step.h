@@ -36,6 +36,9 @@ void chooseMechanisms(WorldImpl& w);
 constexpr char kStagedMechanism = 1, kStiffMechanism = 2;
 const char* mechanismBodies(const WorldImpl& w);
 void stepStiffMechanisms(WorldImpl& w, double t0, double h);
+// At the start of every integrator step from t0 of length h: the motors that reach their speed in
+// it are caught (mechanism.h Motor).
+void beginMechanismStep(WorldImpl& w, double t0, double h);
 // At time t of a stage with weight `weight` (its share of the interval h in the integrator's
 // update: RK4's 1/6, 1/3, 1/3, 1/6; 1 for the Euler methods) on the stage states in w.states and
 // the forces in w.wrenches, whose bodies' damping is in the stages when `staged_damping`.

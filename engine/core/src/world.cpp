@@ -180,6 +180,7 @@ World::World(const WorldDef& def) : impl_(std::make_unique<WorldImpl>()) {
   setRestitutionThreshold(def.restitution_threshold);
   impl_->def.joint_hertz = requirePositive("joint_hertz", def.joint_hertz);
   impl_->def.joint_damping_ratio = requireNonNegative("joint_damping_ratio", def.joint_damping_ratio);
+  setExactJoints(def.exact_joints);
   setStaticFrictionSpeed(def.static_friction_speed);
   setContactMargin(def.contact_margin);
   setSleeping(def.sleeping);
@@ -237,6 +238,7 @@ void World::setSubsteps(int substeps) {
   impl_->def.substeps = substeps;
 }
 void World::setWarmStarting(bool on) { impl_->def.warm_starting = on; }
+void World::setExactJoints(bool on) { impl_->def.exact_joints = on; }
 void World::setContactDisplacement(bool on) { impl_->def.contact_displacement = on; }
 void World::setPositionCorrection(PositionCorrection pc) { impl_->def.position_correction = pc; }
 void World::setPositionIterations(int iterations) {

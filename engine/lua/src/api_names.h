@@ -28,7 +28,8 @@ inline const std::vector<std::string_view> kShapeWritable = {"density", "restitu
                                                             "sensor", "category", "mask", "group", "contact_events", "hit_events", "hit_speed", "one_way", "pre_solve"};
 
 inline const std::vector<std::string_view> kWorldFields = {"gravity", "integrator", "dt", "solver", "iterations",
-                                                           "substeps", "sleeping", "time", "step_count", "title"};
+                                                           "substeps", "sleeping", "exact_joints", "time", "step_count",
+                                                           "title"};
 inline const std::vector<std::string_view> kWorldMethods = {
     "add_body", "add_box", "add_circle", "add_polygon", "add_capsule", "add_segment", "add_chain", "add_spring",
     "add_damper", "add_force", "add_revolute", "add_prismatic", "add_distance", "add_weld", "add_wheel",
@@ -65,7 +66,8 @@ inline const std::vector<std::string_view> kSpringOptions = {"a", "b", "anchor",
 inline const std::vector<std::string_view> kDamperOptions = {"body", "coefficient", "angular_coefficient"};
 inline const std::vector<std::string_view> kForceOptions = {"body", "evaluate", "duration", "point", "other"};
 inline const std::vector<std::string_view> kSceneOptions = {"title", "gravity", "dt", "integrator", "solver",
-                                                            "iterations", "substeps", "sleeping", "duration",
+                                                            "iterations", "substeps", "sleeping", "exact_joints",
+                                                            "duration",
                                                             "camera", "memory_limit", "expect_incidents",
                                                             "impacts",
                                                             // rigidlab test (docs/testing.md)

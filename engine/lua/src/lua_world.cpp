@@ -1,6 +1,6 @@
 // The `world` object scenes receive in PopulateWorld and the hooks (OnStep, Check, OnKey, OnMouse, ...).
 //
-//   fields   gravity (vec2), integrator (string), dt, solver, iterations, substeps, sleeping: read
+//   fields   gravity (vec2), integrator (string), dt, solver, iterations, substeps, sleeping, exact_joints: read
 //            and write; time, step_count, title, controls (world.controls, scene_controls.cpp): read only
 //   methods  add_spring, add_damper, add_force, bodies, find, remove, step, kinetic_energy,
 //            potential_energy here; the body functions (add_box, ...) in lua_world_bodies.cpp, the
@@ -214,6 +214,7 @@ sol::object worldIndex(lua_State* L, const LuaWorld& self, const sol::stack_obje
   if (k == "iterations") return sol::make_object(L, w.settings().iterations);
   if (k == "substeps") return sol::make_object(L, w.settings().substeps);
   if (k == "sleeping") return sol::make_object(L, w.settings().sleeping);
+  if (k == "exact_joints") return sol::make_object(L, w.settings().exact_joints);
   if (k == "time") return sol::make_object(L, w.time());
   if (k == "step_count") return sol::make_object(L, w.stepCount());
   if (k == "title") return sol::make_object(L, self.scene->settings.title);
@@ -265,6 +266,9 @@ void worldNewIndex(lua_State* L, const LuaWorld& self, const sol::stack_object& 
     } else if (k == "sleeping") {
       if (value.get_type() != sol::type::boolean) fail(L, function, "must be true or false, got " + describe(value));
       w.setSleeping(value.as<bool>());
+    } else if (k == "exact_joints") {
+      if (value.get_type() != sol::type::boolean) fail(L, function, "must be true or false, got " + describe(value));
+      w.setExactJoints(value.as<bool>());
     } else if (std::find(kWorldFields.begin(), kWorldFields.end(), k) != kWorldFields.end() || k == "controls" ||
                std::find(kWorldMethods.begin(), kWorldMethods.end(), k) != kWorldMethods.end()) {
       fail(L, function, "is read-only");

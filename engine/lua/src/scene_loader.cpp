@@ -117,6 +117,7 @@ void readSettings(Scene::Impl& s, WorldDef& def, const std::string& at) {
     def.iterations = o.integer("iterations", 1, 10000, def.iterations);
     def.substeps = o.integer("substeps", 1, 64, def.substeps);
     def.sleeping = o.boolean("sleeping", def.sleeping);
+    def.exact_joints = o.boolean("exact_joints", def.exact_joints);
     s.settings.expect_incidents = o.boolean("expect_incidents", false);
     readTestSettings(o, s.settings);
     if (o.has("camera")) {

@@ -285,6 +285,7 @@ class World {
   void setContactSolver(ContactSolver solver);
   void setSubsteps(int substeps);
   void setIterations(int iterations);
+  void setExactJoints(bool on);  // WorldDef::exact_joints
   void setWarmStarting(bool on);
   void setContactDisplacement(bool on);
   void setPositionCorrection(PositionCorrection pc);
