@@ -668,7 +668,7 @@ function Draw:capsule(a, b, radius, color, fill) end
 ---@field substeps? integer soft step: sub-steps per step, 1 to 64, default 8
 ---@field sleeping? boolean default true: islands that stay still for 0.5 s stop being simulated
 ---@field duration? number length of a headless run, s, default 10
----@field camera? {center?: rigidlab.VecLike, height?: number} initial sandbox view, metres
+---@field camera? {center?: rigidlab.VecLike, height?: number, follow?: rigidlab.Body|string} initial sandbox view, metres; follow: a body (set in PopulateWorld) or a body's name the camera keeps in view
 ---@field memory_limit? number MiB the scene's Lua may allocate, at most the host's cap (256 by default)
 ---@field expect_incidents? boolean default false: bodies frozen by the NaN firewall or a non-finite energy are expected (a headless run then still exits with 0, not 3)
 ---@field keys? string[] keys the scene takes from the sandbox's bindings while it runs (OnKey gets them), e.g. {"space", "r"}
