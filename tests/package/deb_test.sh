@@ -60,8 +60,8 @@ EOF
 run_hidden "$build" "$source" bash "$work/runs.sh" "$work" >"$work/runs.log" 2>&1
 
 section version | grep -q "^rigidlab $version (" || fail "--version printed: $(section version)"
-section "run pyramid" | grep -q "Check passed" || fail "run pyramid.lua printed: $(section "run pyramid")"
-section "run my_scene" | grep -q "Check passed" || fail "run my_scene.lua printed: $(section "run my_scene")"
+section "run pyramid" | grep -q "^check  *passed" || fail "run pyramid.lua printed: $(section "run pyramid")"
+section "run my_scene" | grep -q "^check  *passed" || fail "run my_scene.lua printed: $(section "run my_scene")"
 for s in version "run pyramid" "run my_scene"; do
   section "$s" | grep -q "^exit 0$" || fail "$s: $(section "$s" | tail -1)"
 done

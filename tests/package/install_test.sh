@@ -63,7 +63,7 @@ section "lua_scene my_scene.lua" | grep -q "^my_scene.lua: .* bodies after .*Che
   fail "lua_scene my_scene.lua printed: $(section "lua_scene my_scene.lua")"
 section "RIGIDLAB_SCRIPTS lua_scene" | grep -q "^pyramid.lua: 1 bodies after 0.50 s" ||
   fail "\$RIGIDLAB_SCRIPTS did not win: $(section "RIGIDLAB_SCRIPTS lua_scene")"
-section "rigidlab run my_scene.lua" | grep -q "Check passed" || fail "installed rigidlab run printed: $(section "rigidlab run my_scene.lua")"
+section "rigidlab run my_scene.lua" | grep -q "^check  *passed" || fail "installed rigidlab run printed: $(section "rigidlab run my_scene.lua")"
 for s in hello_world lua_scene "lua_scene my_scene.lua" "RIGIDLAB_SCRIPTS lua_scene" "rigidlab run my_scene.lua"; do
   section "$s" | grep -q "^exit 0$" || fail "$s: $(section "$s" | tail -1)"
 done

@@ -25,7 +25,8 @@ run_hidden() {
   local b=$1 s=$2
   shift 2
   # shellcheck disable=SC2016
-  local hide='mount -t tmpfs none "$1" && mount -t tmpfs none "$2" && [ -z "$(ls -A "$1" "$2")" ] || exit 97
+  local hide='mount -t tmpfs none "$1" && mount -t tmpfs none "$2" && [ -z "$(ls -A "$1")" ] && [ -z "$(ls -A "$2")" ] ||
+                exit 97
               shift 2; exec "$@"'
   HIDDEN=1
   for flags in -rm -m; do
@@ -48,6 +49,7 @@ section() {
 finish() {
   if [ "${HIDDEN:-0}" != 1 ]; then
     echo "SKIP: no mount namespace (unshare) to put the build and source trees out of reach; the runs above prove nothing"
+    rm -rf "$work"
     exit 77
   fi
   rm -rf "$work"
