@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# A line while dragging a body (as Box2D's samples draw their mouse joint): on scenes/drag_line.lua
-# (a bar pinned at its centre, 72 px per metre), the left button pressed on the bar at (0.8, 0) and
-# the cursor taken to (4, 3) and held there while the window is closed: the last frame shows the
-# drag's colour along the 4 m or more between the grabbed point and the cursor; a frame without a
-# drag shows none of it.
+# A line while dragging a body (as Box2D's samples draw their mouse joint), with a real mouse
+# (xdotool under Xvfb): on scenes/drag_line.lua (a bar pinned at its centre, 72 px per metre), the
+# left button pressed on the bar at (0.8, 0) and the cursor taken to (4, 3) and held there while
+# the window is closed: the last frame shows the drag's colour along the 4 m or more between the
+# grabbed point and the cursor; a frame without a drag shows none of it.
 source "$(dirname "$0")/lib.sh"
 require_xvfb
 command -v xdotool >/dev/null 2>&1 || { echo "SKIP: xdotool is not installed (cmake/install_deps.sh installs it)"; exit 77; }
@@ -42,4 +42,5 @@ near_cursor=$("$PNG_CHECK" count "$WORK/final.png" 900 134 940 174 $DRAG 40)
 echo "drag colour: $dragged pixels, $near_cursor of them within 20 px of the cursor"
 [ "$dragged" -ge 150 ] || fail "while dragging, only $dragged pixels have the drag's colour (a line of 4 m or more: 150 or more)"
 [ "$near_cursor" -ge 10 ] || fail "the drag line does not reach the cursor at (928, 144): $near_cursor pixels there"
+
 finish

@@ -247,9 +247,10 @@ int runSandbox(const SandboxOptions& options) {
             quit = true;
           handleEvent(s, event, {io.WantCaptureMouse, io.WantCaptureKeyboard});
         }
-        // Closed early (window, SIGTERM) under --frames: this frame is still drawn, for the screenshot.
+        // Closed early (window, SIGTERM) under --frames: this frame is still drawn, for the screenshot
+        // and the layout file.
         const bool last_frame = (options.frames && frame == *options.frames) || quit;
-        if (quit && !(automated && !options.screenshot.empty())) break;
+        if (quit && !(automated && (!options.screenshot.empty() || !options.layout_file.empty()))) break;
 
         updateHotReload(s);
         syncTimeline(s);  // rewind.cpp: an edit at a past state drops its future
