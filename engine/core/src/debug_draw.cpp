@@ -101,7 +101,7 @@ Color jointColor(JointType type) {
 // anchor would be (prismatic, wheel) at the bounds.
 template <typename TransformOf>
 void drawJoints(const WorldImpl& w, DebugDraw& dd, TransformOf transformOf) {
-  const Color anchor{0.85f, 1.0f, 0.9f, 1.0f}, limit{1.0f, 0.6f, 0.3f, 1.0f}, gap{1.0f, 0.3f, 0.3f, 1.0f};
+  const Color anchor{0.7f, 1.0f, 0.85f, 1.0f}, limit{1.0f, 0.6f, 0.3f, 1.0f}, gap{1.0f, 0.3f, 0.3f, 1.0f};
   const Color none{0.0f, 0.0f, 0.0f, 0.0f};
   const auto size = [&](uint32_t slot) {  // a length for marks on a body: about its size, 0.1 to 1 m
     return slot == kWorldSlot ? 0.5 : std::clamp(w.bodies[slot].max_extent, 0.1, 1.0);
