@@ -3,7 +3,9 @@
 #   <prefix>/include/rigidlab/...                          the public headers
 #   <prefix>/lib/cmake/rigidlab/                           rigidlabConfig.cmake and the targets
 #   <prefix>/bin/rigidlab                                  the program (with the sandbox if built)
-#   <prefix>/share/rigidlab/scripts, assets                found at run time relative to bin/
+#   <prefix>/share/doc/rigidlab/LICENSE, CHANGELOG.md
+#   <prefix>/share/rigidlab/scripts, assets                found at run time relative to bin/, and
+#                                                          by users' programs through the package config
 # The libraries are static; their private dependencies (Lua 5.4 as C++, sol2) are looked up again
 # by the package config, because a static library's users link them.
 include(CMakePackageConfigHelpers)
@@ -26,6 +28,7 @@ endif()
 if(TARGET rigidlab_sandbox)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/assets/ DESTINATION ${CMAKE_INSTALL_DATADIR}/rigidlab/assets)
 endif()
+install(FILES ${PROJECT_SOURCE_DIR}/LICENSE ${PROJECT_SOURCE_DIR}/CHANGELOG.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
 
 set(config_dir ${CMAKE_INSTALL_LIBDIR}/cmake/rigidlab)
 install(EXPORT rigidlabTargets NAMESPACE rigidlab:: DESTINATION ${config_dir})
@@ -34,8 +37,10 @@ if(TARGET rigidlab_lua)
 else()
   set(RIGIDLAB_WITH_LUA OFF)
 endif()
+set(RIGIDLAB_DATA_DIR ${CMAKE_INSTALL_DATADIR}/rigidlab)  # the package config's PACKAGE_RIGIDLAB_DATA_DIR
 configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/rigidlabConfig.cmake.in
-                              ${PROJECT_BINARY_DIR}/rigidlabConfig.cmake INSTALL_DESTINATION ${config_dir})
+                              ${PROJECT_BINARY_DIR}/rigidlabConfig.cmake INSTALL_DESTINATION ${config_dir}
+                              PATH_VARS RIGIDLAB_DATA_DIR)
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/rigidlabConfigVersion.cmake COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/rigidlabConfig.cmake ${PROJECT_BINARY_DIR}/rigidlabConfigVersion.cmake
         DESTINATION ${config_dir})

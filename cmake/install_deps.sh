@@ -20,7 +20,7 @@ packages=(
   xdotool                             # sandbox interaction test: real mouse and keys under Xvfb
   gnuplot-nox                         # accuracy-report pictures
   clang libclang-rt-14-dev            # libFuzzer targets and the sanitizer runtime (tests/fuzz)
-  libxml2-utils                       # xmllint: the test of rigidlab test checks its JUnit XML is well formed
+  libxml2-utils                       # xmllint: the test of rigidlab test validates its JUnit XML (tests/runner/junit-4.xsd)
   nlohmann-json3-dev                  # the program's JSON reader (engine/app/json_value.cpp)
   g++-aarch64-linux-gnu               # compile-only check that the core builds for aarch64 (tests/portability)
 )

@@ -30,8 +30,9 @@ contacts, calls into Lua, peak memory, and the peers' stability metrics.
   --reps R      repetitions, each on a fresh world (default 3)
   --steps N     steps per repetition (default: the scene's own, listed below)
   --json        one JSON line per scene, in the peer programs' format plus rigidlab's fields
-  --compare     against Box2D 2.4.1 and Chipmunk 7.0.3 (the Debian packages; the peer programs of
-                DIR, built first) and Box2D v3 when a program is given (--v3, or RIGIDLAB_V3_BENCH):
+  --compare     against Box2D 2.4.1 and Chipmunk 7.0.3 (the Debian packages libbox2d-dev and
+                libchipmunk-dev, never installed by this: it names the missing ones and the command
+                that installs them; the peer programs of DIR, built first) and Box2D v3 when a program is given (--v3, or RIGIDLAB_V3_BENCH):
                 every scene for R rounds (--reps), each round alternating rigidlab with every other
                 engine (one five times slower than rigidlab runs in the first round only); prints
                 each one's median ms per step with the spread [min-max] of the rounds, the ratios
@@ -109,7 +110,13 @@ int benchCommand(const std::vector<std::string>& argv) {
   std::vector<const BenchScene*> selected;
   for (const std::string& name : args.positional()) {
     const auto it = std::find_if(benchScenes().begin(), benchScenes().end(), [&](const BenchScene& s) { return s.name == name; });
-    if (it == benchScenes().end()) throw UsageError("bench: unknown scene '" + name + "' (see rigidlab bench --help)");
+    if (it == benchScenes().end()) {
+      std::vector<std::string> names;
+      for (const BenchScene& scene : benchScenes()) names.push_back(scene.name);
+      const std::string hint = suggestion(name, names);
+      throw UsageError("bench: unknown scene '" + name + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)") +
+                       " (see rigidlab bench --help)");
+    }
     selected.push_back(&*it);
   }
   if (selected.empty())

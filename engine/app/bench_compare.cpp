@@ -91,6 +91,7 @@ std::string quality(const JsonValue& r) {
 }
 
 constexpr double kSlowPeer = 5.0;
+constexpr int kPeersMissingPackages = 3;  // engine/peers/run.sh's exit status
 
 struct Series {
   std::vector<double> ms;
@@ -119,7 +120,12 @@ std::vector<PeerProgram> buildPeerPrograms(const std::filesystem::path& dir, con
     throw UsageError("bench: no peer programs at " + dir.string() + " (no run.sh there; use --peers DIR)");
   std::fprintf(stderr, "bench: building the peer programs (%s) in %s ...\n", dir.c_str(), build_dir.c_str());
   const std::string command = "'" + script.string() + "' --build-only '" + build_dir.string() + "' >&2";
-  if (std::system(command.c_str()) != 0) throw std::runtime_error("bench: building the peer programs failed: " + command);
+  const int status = std::system(command.c_str());
+  // run.sh installs nothing: without the peers' packages it has named them and the command that
+  // installs them (exit status 3).
+  if (status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == kPeersMissingPackages)
+    throw std::runtime_error("bench: --compare needs the packages named above; nothing was installed");
+  if (status != 0) throw std::runtime_error("bench: building the peer programs failed: " + command);
   return {{"Box2D 2.4.1", (build_dir / "box2d_bench").string(), ""},
           {"Chipmunk 7", (build_dir / "chipmunk_bench").string(), ""}};
 }

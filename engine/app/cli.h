@@ -5,6 +5,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace rigidlab::app {
@@ -14,9 +15,15 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The candidate `given` is probably a typo of (the Lua API's rule, lua/closest_name.h, with short
+// names allowed one edit), or "": for "did you mean ...?".
+std::string suggestion(std::string_view given, const std::vector<std::string>& candidates);
+
 class Args {
  public:
-  // `valued`: options that take a value; `flags`: options that do not.
+  // `command` names the subcommand in messages ("run: unknown option --tmie (did you mean
+  // --time?)"); empty for the program's own options. `valued`: options that take a value;
+  // `flags`: options that do not.
   Args(std::string command, const std::vector<std::string>& argv, std::vector<std::string> valued,
        std::vector<std::string> flags);
 
@@ -28,7 +35,7 @@ class Args {
   bool help() const { return help_; }
 
  private:
-  std::string command_;
+  std::string command_;  // "run: ", or empty
   std::vector<std::pair<std::string, std::string>> values_;
   std::vector<std::string> flags_set_;
   std::vector<std::string> positional_;

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <utility>
 
 #include "rigidlab/lua/scene_text.h"
 
@@ -64,8 +65,16 @@ std::string seconds3(double seconds) {
 
 std::string countsAttributes(const TestCounts& c, size_t tests, double seconds) {
   return "tests=\"" + std::to_string(tests) + "\" failures=\"" + std::to_string(c.failed) + "\" errors=\"" +
-         std::to_string(c.errors) + "\" skipped=\"" + std::to_string(c.skipped) + "\" time=\"" + seconds3(seconds) +
-         "\"";
+         std::to_string(c.errors) + "\" time=\"" + seconds3(seconds) + "\"";
+}
+
+// A testcase's classname (the scene's folder with dots) and name (its file name without .lua).
+std::pair<std::string, std::string> caseNames(const TestResult& r) {
+  const std::filesystem::path path(r.scene);
+  std::string classname = path.parent_path().generic_string();
+  for (char& ch : classname)
+    if (ch == '/') ch = '.';
+  return {classname.empty() ? "." : classname, path.stem().string()};
 }
 
 }  // namespace
@@ -122,21 +131,28 @@ std::string junitXml(const std::vector<TestResult>& results, double seconds, con
   const std::string counts = countsAttributes(c, results.size(), seconds);
   std::string out = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   out += "<testsuites name=\"rigidlab test\" " + counts + ">\n";
-  out += "  <testsuite name=\"rigidlab test\" " + counts + " timestamp=\"" + xml(timestamp) + "\">\n";
+  out += "  <testsuite name=\"rigidlab test\" " + counts + " skipped=\"" + std::to_string(c.skipped) +
+         "\" timestamp=\"" + xml(timestamp) + "\">\n";
+  // What the junit-4 format has no attribute for (tests/runner/junit-4.xsd): each scene's file.
+  if (!results.empty()) {
+    out += "    <properties>\n";
+    for (const TestResult& r : results) {
+      const auto [classname, name] = caseNames(r);
+      out += "      <property name=\"" + xml(classname + "." + name + ".file") + "\" value=\"" + xml(r.scene) + "\"/>\n";
+    }
+    out += "    </properties>\n";
+  }
   for (const TestResult& r : results) {
-    const std::filesystem::path path(r.scene);
-    std::string classname = path.parent_path().generic_string();
-    for (char& ch : classname)
-      if (ch == '/') ch = '.';
-    out += "    <testcase classname=\"" + xml(classname.empty() ? "." : classname) + "\" name=\"" +
-           xml(path.stem().string()) + "\" file=\"" + xml(r.scene) + "\" time=\"" + seconds3(r.seconds) + "\"";
+    const auto [classname, name] = caseNames(r);
+    out += "    <testcase classname=\"" + xml(classname) + "\" name=\"" + xml(name) + "\" time=\"" +
+           seconds3(r.seconds) + "\"";
     const std::string first_line = r.message.substr(0, r.message.find('\n'));
     switch (r.status) {
       case TestStatus::Passed:
         out += "/>\n";
         continue;
-      case TestStatus::Skipped:
-        out += ">\n      <skipped message=\"" + xml(r.message) + "\"/>\n    </testcase>\n";
+      case TestStatus::Skipped:  // the reason as the element's text: junit-4's <skipped> has no attributes
+        out += ">\n      <skipped>" + xml(r.message, false) + "</skipped>\n    </testcase>\n";
         continue;
       case TestStatus::Failed:
         out += ">\n      <failure type=\"failure\" message=\"" + xml(first_line) + "\">" + xml(r.message, false) + "</failure>\n";

@@ -37,8 +37,10 @@ std::string resultHead(const TestResult& result);
 std::string resultLines(const TestResult& result);
 // "3 passed, 1 failed, 2 errors (1 timed out), 1 skipped: 7 scenes in 4.2 s"
 std::string summaryLine(const TestCounts& counts, size_t scenes, double seconds);
-// A JUnit XML document: one testsuite, one testcase per scene (classname: its folder with dots,
-// name: its file name without .lua) with <failure>, <error> or <skipped> and its log.
+// A JUnit XML document in the strict junit-4 format (tests/runner/junit-4.xsd): one testsuite, one
+// testcase per scene (classname: its folder with dots, name: its file name without .lua) with
+// <failure>, <error> or <skipped> (the reason as its text) and its log; each scene's file as a
+// property "<classname>.<name>.file" of the suite.
 std::string junitXml(const std::vector<TestResult>& results, double seconds, const std::string& timestamp);
 
 }  // namespace rigidlab::app

@@ -670,7 +670,7 @@ function Draw:capsule(a, b, radius, color, fill) end
 ---@field sleeping? boolean default true: islands that stay still for 0.5 s stop being simulated
 ---@field exact_joints? boolean default true: jointed bodies that touch nothing are integrated with their joints (the integrator's order, joints held to round-off); false: every joint solved after the integrator by the contact solvers (first order)
 ---@field duration? number length of a headless run, s, default 10
----@field camera? {center?: rigidlab.VecLike, height?: number} initial sandbox view, metres
+---@field camera? {center?: rigidlab.VecLike, height?: number, follow?: rigidlab.Body|string} initial sandbox view, metres; follow: a body (set in PopulateWorld) or a body's name the camera keeps in view
 ---@field memory_limit? number MiB the scene's Lua may allocate, at most the host's cap (256 by default)
 ---@field expect_incidents? boolean default false: bodies frozen by the NaN firewall or a non-finite energy are expected (a headless run then still exits with 0, not 3)
 ---@field keys? string[] keys the scene takes from the sandbox's bindings while it runs (OnKey gets them), e.g. {"space", "r"}

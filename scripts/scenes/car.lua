@@ -32,6 +32,7 @@ function PopulateWorld(world)
                                 spring_damping = 0.7, lower = lower, upper = upper }
   end
   axles[1].motor_speed, axles[1].max_motor_torque = motor_speed, 400  -- rear-wheel drive
+  scene.camera.follow = chassis  -- the sandbox's camera drives along
 end
 
 function OnStep(world, dt)

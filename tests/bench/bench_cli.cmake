@@ -105,3 +105,24 @@ expect_match("bench --peer-timeout" "${out}" "Chipmunk 7 +> 100.000 \\(stopped a
 run(2 bench stack10 --peer-timeout 5)
 run(2 bench stack10 --compare --peers /nonexistent)
 run(2 bench stack10 --peers ${fake})
+
+# --compare installs nothing: without the peers' packages (here hidden from the compiler by
+# -nostdinc, whether installed or not) it names them and the command that installs them, exits
+# with 1, and never calls apt-get or sudo (stand-ins on PATH record any call).
+set(fakebin ${CMAKE_CURRENT_BINARY_DIR}/compare_no_install_bin)
+file(REMOVE_RECURSE ${fakebin})
+foreach(tool apt-get apt sudo dpkg)
+  file(WRITE ${fakebin}/${tool} "#!/bin/sh\necho \"${tool} $*\" >> '${fakebin}/called'\nexit 1\n")
+  file(CHMOD ${fakebin}/${tool} PERMISSIONS OWNER_READ OWNER_WRITE OWNER_EXECUTE)
+endforeach()
+execute_process(COMMAND ${CMAKE_COMMAND} -E env "PATH=${fakebin}:$ENV{PATH}" "CXX=g++ -nostdinc"
+                        ${RIGIDLAB} bench stack10 --compare --peers ${CMAKE_CURRENT_LIST_DIR}/../../engine/peers --reps 1 --steps 2
+                RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+expect_equal("bench --compare without the peers' packages: exit status (${err})" "${status}" 1)
+expect_match("bench --compare names the missing packages" "${err}" "missing Debian packages: libbox2d-dev libchipmunk-dev\n")
+expect_match("bench --compare gives the command" "${err}" "install them with: sudo apt-get install libbox2d-dev libchipmunk-dev\n")
+expect_match("bench --compare says nothing was installed" "${err}" "nothing was installed")
+if(EXISTS ${fakebin}/called)
+  file(READ ${fakebin}/called called)
+  message(FATAL_ERROR "bench --compare ran: ${called}")
+endif()

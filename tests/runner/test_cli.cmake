@@ -51,38 +51,52 @@ endif()
 # JUnit XML: well-formed, with the right counts and the failure messages.
 file(READ ${WORK}/results/all.xml xml)
 expect_match("testsuite counts" "${xml}"
-             "<testsuite name=\"rigidlab test\" tests=\"7\" failures=\"2\" errors=\"2\" skipped=\"1\" time=\"[0-9.]+\"")
+             "<testsuite name=\"rigidlab test\" tests=\"7\" failures=\"2\" errors=\"2\" time=\"[0-9.]+\" skipped=\"1\"")
 count_matches(ncases "${xml}" "<testcase ")
 count_matches(nfailures "${xml}" "<failure ")
 count_matches(nerrors "${xml}" "<error ")
-count_matches(nskipped "${xml}" "<skipped ")
+count_matches(nskipped "${xml}" "<skipped>")
 expect_equal("testcases" "${ncases}" "7")
 expect_equal("failures" "${nfailures}" "2")
 expect_equal("errors" "${nerrors}" "2")
 expect_equal("skipped" "${nskipped}" "1")
 expect_match("failure element" "${xml}"
-             "<testcase classname=\"suite\" name=\"fail_check\" file=\"suite/fail_check.lua\" time=\"[0-9.]+\">\n      <failure type=\"failure\" message=\"suite/fail_check.lua:10: Check: expected the ball to float\">")
+             "<testcase classname=\"suite\" name=\"fail_check\" time=\"[0-9.]+\">\n      <failure type=\"failure\" message=\"suite/fail_check.lua:10: Check: expected the ball to float\">")
 expect_match("timeout element" "${xml}" "name=\"hang\"[^\n]*>\n      <error type=\"timeout\" message=\"killed after 6 s")
 expect_match("nested classname" "${xml}" "<testcase classname=\"suite.nested\" name=\"deeper\"")
-find_program(PYTHON3 python3)
+expect_match("skip reason as the text of <skipped>" "${xml}"
+             "name=\"skip\"[^\n]*>\n      <skipped>waiting for the new joint solver</skipped>")
+expect_match("each scene's file as a property" "${xml}"
+             "<properties>\n(      <property [^\n]*\n)*      <property name=\"suite.nested.deeper.file\" value=\"suite/nested/deeper.lua\"/>")
+
+# The strict junit-4 schema (Jenkins' reading of JUnit XML; tests/runner/junit-4.xsd): the file
+# validates, and the schema refuses what the format does not have (the attributes rigidlab wrote
+# before: file on testcase, skipped on testsuites, message on skipped), so it can fail.
 find_program(XMLLINT xmllint)
-if(PYTHON3)
-  execute_process(COMMAND ${PYTHON3} -c [=[
-import sys, xml.etree.ElementTree as ET
-root = ET.parse(sys.argv[1]).getroot()
-suite = root.find("testsuite")
-cases = suite.findall("testcase")
-counts = [len(cases)] + [sum(1 for c in cases if c.find(k) is not None) for k in ("failure", "error", "skipped")]
-attrs = [int(suite.get(k)) for k in ("tests", "failures", "errors", "skipped")]
-sys.exit(0 if counts == attrs == [7, 2, 2, 1] else "counts %s, attributes %s" % (counts, attrs))
-]=] ${WORK}/results/all.xml RESULT_VARIABLE status ERROR_VARIABLE perr)
-  expect_equal("python3 reading the JUnit XML (${perr})" "${status}" "0")
-elseif(XMLLINT)
-  execute_process(COMMAND ${XMLLINT} --noout ${WORK}/results/all.xml RESULT_VARIABLE status ERROR_VARIABLE perr)
-  expect_equal("xmllint on the JUnit XML (${perr})" "${status}" "0")
-else()
-  message(STATUS "neither python3 nor xmllint: the XML's well-formedness is not checked, only its counts")
+if(NOT XMLLINT)
+  message(FATAL_ERROR "xmllint is missing: it checks the JUnit XML against tests/runner/junit-4.xsd (Debian libxml2-utils; cmake/install_deps.sh installs it)")
 endif()
+set(schema ${DIR}/junit-4.xsd)
+function(validate label file expected_status)
+  execute_process(COMMAND ${XMLLINT} --noout --schema ${schema} ${file} RESULT_VARIABLE status ERROR_VARIABLE perr)
+  if(expected_status EQUAL 0)
+    expect_equal("${label}: valid junit-4 (${perr})" "${status}" "0")
+  elseif(status EQUAL 0)
+    message(FATAL_ERROR "${label}: the junit-4 schema accepted it")
+  endif()
+endfunction()
+validate("the suite's JUnit XML" ${WORK}/results/all.xml 0)
+function(validate_with_extra label from to)
+  string(REPLACE "${from}" "${to}" bad "${xml}")
+  if(bad STREQUAL xml)
+    message(FATAL_ERROR "${label}: '${from}' is not in the JUnit XML")
+  endif()
+  file(WRITE ${WORK}/results/bad.xml "${bad}")
+  validate("${label}" ${WORK}/results/bad.xml 1)
+endfunction()
+validate_with_extra("file on testcase" "name=\"pass_ball\"" "name=\"pass_ball\" file=\"suite/pass_ball.lua\"")
+validate_with_extra("skipped on testsuites" "<testsuites name=\"rigidlab test\"" "<testsuites name=\"rigidlab test\" skipped=\"1\"")
+validate_with_extra("message on skipped" "<skipped>" "<skipped message=\"waiting\">")
 
 # Shards: every scene in exactly one shard, position i (from 0) in shard (i mod N) + 1.
 set(union "")
@@ -162,6 +176,7 @@ file(STRINGS ${WORK}/diffs/suite/golden_ball/actual.txt actual_25 REGEX "^25 2 "
 file(STRINGS ${WORK}/suite/golden/ball.txt golden_25 REGEX "^25 2 ")
 expect_equal("before the nudge the runs agree" "${actual_25}" "${golden_25}")
 file(READ ${WORK}/golden.xml xml)
+validate("the golden run's JUnit XML" ${WORK}/golden.xml 0)
 expect_match("golden failure in the XML" "${xml}" "<failure type=\"failure\" message=\"golden trajectory suite/golden/ball.txt: body 2 &quot;ball&quot; diverged first at step 30")
 # Within a tolerance the nudge passes.
 string(REPLACE "golden_every = 5" "golden_every = 5, golden_tolerance = 1e-6" tolerant "${perturbed}")

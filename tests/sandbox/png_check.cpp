@@ -3,9 +3,13 @@
 //   png_check pixel IMAGE X Y                 prints "R G B" of the pixel (X right, Y down, from 0)
 //   png_check near IMAGE X Y R G B TOL        exit 0 if every channel is within TOL, else 1
 //   png_check diff A B X0 Y0 X1 Y1            prints how many pixels of the rectangle differ
+//   png_check count IMAGE X0 Y0 X1 Y1 R G B TOL
+//                                             prints how many pixels of the rectangle (clipped to
+//                                             the image) are within TOL of R G B in every channel
 //   png_check size IMAGE                      prints "W H"
 #include <stb_image.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -86,11 +90,26 @@ int main(int argc, char** argv) {
     std::printf("%ld\n", count);
     return 0;
   }
+  if (cmd == "count" && argc == 11) {
+    const Image img = load(argv[2]);
+    const int x0 = std::max(0, number(argv[3])), y0 = std::max(0, number(argv[4]));
+    const int x1 = std::min(img.w, number(argv[5])), y1 = std::min(img.h, number(argv[6]));
+    const int want[3] = {number(argv[7]), number(argv[8]), number(argv[9])}, tol = number(argv[10]);
+    long count = 0;
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) {
+        const unsigned char* p = img.at(x, y);
+        if (std::abs(p[0] - want[0]) <= tol && std::abs(p[1] - want[1]) <= tol && std::abs(p[2] - want[2]) <= tol) ++count;
+      }
+    std::printf("%ld\n", count);
+    return 0;
+  }
   if (cmd == "size" && argc == 3) {
     const Image img = load(argv[2]);
     std::printf("%d %d\n", img.w, img.h);
     return 0;
   }
-  std::fprintf(stderr, "usage: png_check pixel IMAGE X Y | near IMAGE X Y R G B TOL | diff A B X0 Y0 X1 Y1 | size IMAGE\n");
+  std::fprintf(stderr, "usage: png_check pixel IMAGE X Y | near IMAGE X Y R G B TOL | diff A B X0 Y0 X1 Y1 | "
+                       "count IMAGE X0 Y0 X1 Y1 R G B TOL | size IMAGE\n");
   return 2;
 }

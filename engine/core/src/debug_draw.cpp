@@ -77,19 +77,38 @@ struct JointPose {
   double angle_a = 0.0, angle_b = 0.0;
 };
 
-// Joints as a few lines each (no allocation): the bodies' centres joined to their anchors, the
-// anchors as points, and what each type constrains. Limits are drawn where the line from the
-// anchor to b's centre would point (revolute) or where b's anchor would be (prismatic, wheel) at
-// the bounds.
+// The colour of a joint kind's lines (each kind its own, as Box2D's debug draw has them).
+Color jointColor(JointType type) {
+  switch (type) {
+    case JointType::Revolute: return {0.55f, 0.95f, 0.75f, 0.9f};   // sea green
+    case JointType::Prismatic: return {0.45f, 0.75f, 1.0f, 0.9f};   // sky blue
+    case JointType::Distance: return {0.95f, 0.85f, 0.45f, 0.9f};   // straw
+    case JointType::Weld: return {0.9f, 0.6f, 0.95f, 0.9f};         // orchid
+    case JointType::Wheel: return {0.5f, 0.9f, 0.95f, 0.9f};        // turquoise
+    case JointType::Motor: return {1.0f, 0.65f, 0.75f, 0.9f};       // pink
+    case JointType::Friction: return {0.8f, 0.8f, 0.6f, 0.9f};      // khaki
+    case JointType::Pulley: return {0.75f, 0.7f, 1.0f, 0.9f};       // lavender
+    case JointType::Gear: return {0.95f, 0.75f, 0.5f, 0.9f};        // tan
+  }
+  return {0.8f, 0.8f, 0.8f, 0.9f};
+}
+
+// Joints as lines, each kind in its colour (no allocation): the bodies' centres joined to their
+// anchors and the anchors to each other (as Box2D's debug draw does), the anchors as points, and
+// what each kind constrains: a ring at a revolute pin, a square at a weld, prismatic and wheel
+// axes, a distance joint as a line or a spring, pulley ropes, the two geared bodies joined. Limits
+// are drawn where the line from the anchor to b's centre would point (revolute) or where b's
+// anchor would be (prismatic, wheel) at the bounds.
 template <typename TransformOf>
 void drawJoints(const WorldImpl& w, DebugDraw& dd, TransformOf transformOf) {
-  const Color line{0.55f, 0.95f, 0.75f, 0.9f}, anchor{0.7f, 1.0f, 0.85f, 1.0f}, limit{1.0f, 0.6f, 0.3f, 1.0f};
-  const Color gap{1.0f, 0.3f, 0.3f, 1.0f};
+  const Color anchor{0.7f, 1.0f, 0.85f, 1.0f}, limit{1.0f, 0.6f, 0.3f, 1.0f}, gap{1.0f, 0.3f, 0.3f, 1.0f};
+  const Color none{0.0f, 0.0f, 0.0f, 0.0f};
   const auto size = [&](uint32_t slot) {  // a length for marks on a body: about its size, 0.1 to 1 m
     return slot == kWorldSlot ? 0.5 : std::clamp(w.bodies[slot].max_extent, 0.1, 1.0);
   };
   for (const Joint& j : w.joints) {
     if (!j.alive) continue;
+    const Color line = jointColor(j.def.type);
     JointPose p;
     const auto place = [&](uint32_t slot, Transform& xf, std::optional<Vec2>& center, double& angle) {
       if (slot == kWorldSlot) return;
@@ -107,6 +126,7 @@ void drawJoints(const WorldImpl& w, DebugDraw& dd, TransformOf transformOf) {
     p.anchor_b = p.xb.apply(j.local_b);
     if (p.center_a) dd.drawSegment(*p.center_a, p.anchor_a, line);
     if (p.center_b) dd.drawSegment(*p.center_b, p.anchor_b, line);
+    const double mark = 0.25 * std::min(size(j.a), size(j.b));  // a ring's radius, a square's half side
     switch (j.def.type) {
       case JointType::Distance:
         if (j.def.enable_spring && j.def.spring_hertz > 0.0)
@@ -114,7 +134,8 @@ void drawJoints(const WorldImpl& w, DebugDraw& dd, TransformOf transformOf) {
         else
           dd.drawSegment(p.anchor_a, p.anchor_b, line);
         break;
-      case JointType::Motor:  // b's anchor and its target
+      case JointType::Motor:     // b's anchor and its target
+      case JointType::Friction:  // the anchors, which the joint holds together by friction
         dd.drawSegment(p.anchor_a, p.anchor_b, line);
         break;
       case JointType::Pulley:
@@ -129,6 +150,8 @@ void drawJoints(const WorldImpl& w, DebugDraw& dd, TransformOf transformOf) {
         const Vec2 u = p.xa.q.apply(j.local_axis), n = perp(u);
         const double reach = 2.0 * size(j.b);
         dd.drawSegment(p.anchor_a - reach * u, p.anchor_a + reach * u, line);
+        dd.drawSegment(p.anchor_a, p.anchor_b, line);  // how far b has slid along the axis
+        if (j.def.type == JointType::Wheel) dd.drawCircle(p.anchor_b, mark, 0.0, none, line);
         if (j.def.enable_limit) {
           const double tick = 0.3 * size(j.b);
           for (const double bound : {j.def.lower, j.def.upper}) {
@@ -139,6 +162,7 @@ void drawJoints(const WorldImpl& w, DebugDraw& dd, TransformOf transformOf) {
         break;
       }
       case JointType::Revolute:
+        dd.drawCircle(p.anchor_b, mark, p.angle_b, none, line);  // the pin, its radius line turning with b
         if (j.def.enable_limit) {
           const Vec2 arm = p.center_b ? Vec2(*p.center_b - p.anchor_b) : Vec2::Zero();
           const double current = p.angle_b - p.angle_a - j.reference_angle;
@@ -150,13 +174,18 @@ void drawJoints(const WorldImpl& w, DebugDraw& dd, TransformOf transformOf) {
           }
         }
         break;
+      case JointType::Weld: {
+        const Rot q = Rot::fromAngle(p.angle_b);
+        const Vec2 corners[4] = {p.anchor_b + q.apply(Vec2(-mark, -mark)), p.anchor_b + q.apply(Vec2(mark, -mark)),
+                                 p.anchor_b + q.apply(Vec2(mark, mark)), p.anchor_b + q.apply(Vec2(-mark, mark))};
+        dd.drawPolygon(corners, none, line);
+        break;
+      }
       default:
         break;
     }
     // Anchors that should coincide and do not (a joint pulled apart) are joined in red.
-    const bool one_anchor = j.def.type != JointType::Distance && j.def.type != JointType::Pulley &&
-                            j.def.type != JointType::Motor && j.def.type != JointType::Prismatic &&
-                            j.def.type != JointType::Wheel;
+    const bool one_anchor = j.def.type == JointType::Revolute || j.def.type == JointType::Weld;
     if (one_anchor && (p.anchor_b - p.anchor_a).norm() > 1e-3) dd.drawSegment(p.anchor_a, p.anchor_b, gap);
     dd.drawPoint(p.anchor_a, 6.0f, anchor);
     dd.drawPoint(p.anchor_b, 6.0f, anchor);

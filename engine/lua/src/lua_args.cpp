@@ -64,41 +64,6 @@ std::string describe(const sol::object& value) {
   return text;
 }
 
-std::string closestName(std::string_view name, const std::vector<std::string_view>& candidates) {
-  // Optimal string alignment distance: Levenshtein plus swaps of two neighbouring letters.
-  const auto distance = [](std::string_view a, std::string_view b) {
-    std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
-    for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
-    for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
-    for (size_t i = 1; i <= a.size(); ++i)
-      for (size_t j = 1; j <= b.size(); ++j) {
-        d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
-        if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
-      }
-    return d[a.size()][b.size()];
-  };
-  const auto lower = [](std::string_view s) {
-    std::string l(s);
-    for (char& c : l) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return l;
-  };
-  if (name.size() < 4 || name.size() > 64) return "";
-  std::string best;
-  size_t best_distance = SIZE_MAX;
-  for (std::string_view c : candidates) {
-    size_t d = distance(name, c);
-    const size_t allowed = std::max(name.size(), c.size()) / 5;
-    if (lower(name) == lower(c)) d = 0;
-    else if (c.starts_with(name)) d = std::min(d, allowed);  // a name cut short: always a candidate
-    else if (d > allowed) continue;
-    if (d < best_distance) {
-      best_distance = d;
-      best = std::string(c);
-    }
-  }
-  return best;
-}
-
 std::string fieldName(lua_State* L, std::string_view what, const sol::object& key) {
   if (key.get_type() != sol::type::string) fail(L, what, "fields are named by strings, got " + describe(key));
   return key.as<std::string>();

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "rigidlab/error.h"
+#include "rigidlab/lua/closest_name.h"
 #include "rigidlab/math.h"
 #include "script_host.h"
 
@@ -49,14 +50,6 @@ std::string boundedString(lua_State* L, int index, std::string_view function, st
 // Strings are shortened to 40 bytes and their control characters escaped (scene_text.h).
 std::string describe(const sol::object& value);
 std::string describe(lua_State* L, int index);
-
-// The valid name `name` was probably meant to be, among `candidates`, or "" if none is close
-// enough to be a typo of it: a name of at least 4 characters that differs from a candidate only in
-// case, or by at most one edit (a letter added, dropped, changed, or two neighbours swapped) per
-// 5 characters of the longer name, or that begins the candidate. So 'widht' → 'width', 'radus' →
-// 'radius' and 'angular' → 'angular_velocity', but 'mask' suggests nothing: one letter in four
-// changed is another word ('mass'), not a slip.
-std::string closestName(std::string_view name, const std::vector<std::string_view>& candidates);
 
 // The names of several lists in one (a function's accepted options).
 std::vector<std::string_view> joined(std::initializer_list<const std::vector<std::string_view>*> lists);

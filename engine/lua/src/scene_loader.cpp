@@ -121,14 +121,50 @@ void readSettings(Scene::Impl& s, WorldDef& def, const std::string& at) {
     s.settings.expect_incidents = o.boolean("expect_incidents", false);
     readTestSettings(o, s.settings);
     if (o.has("camera")) {
-      const Options c(L, "scene.camera", o.get("camera"), {"center", "height"});
+      const Options c(L, "scene.camera", o.get("camera"), {"center", "height", "follow"});
       if (c.has("center")) s.settings.camera_center = c.vec("center");
       if (c.has("height")) s.settings.camera_height = c.positive("height");
+      // The body itself is read once PopulateWorld has made it (readCameraFollow).
+      if (c.has("follow")) {
+        const sol::object follow = c.get("follow");
+        follow.push(L);
+        const bool body = toHandle<LuaBody>(L, -1) != nullptr;
+        lua_pop(L, 1);
+        if (!body && follow.get_type() != sol::type::string)
+          c.fail("follow", "must be a body or a body's name, got " + describe(follow));
+      }
     }
     readModSettings(o, s.settings);  // scene.keys, scene.controls (scene_controls.cpp)
   } catch (const ScriptError& e) {
     throw SceneError((at.empty() ? s.name + ": " : at) + e.what());
   }
+}
+
+// scene.camera.follow once PopulateWorld has made the bodies (a scene sets it there to a body it
+// made, or names one anywhere): the body the sandbox's camera keeps in the middle of the view.
+void readCameraFollow(Scene::Impl& s) {
+  lua_State* L = s.host->L();
+  std::string problem;
+  const auto error = s.host->run([&] {
+    const auto field = [&](const char* key) {  // raw: no metamethod of the script's runs in the host
+      lua_pushstring(L, key);
+      return lua_rawget(L, -2);
+    };
+    lua_pushglobaltable(L);
+    if (field("scene") != LUA_TTABLE || field("camera") != LUA_TTABLE || field("follow") == LUA_TNIL) return;
+    if (const LuaBody* body = toHandle<LuaBody>(L, -1)) {
+      if (body->scene == &s && s.world->isValid(body->id)) s.settings.camera_follow = body->id;
+      else problem = "is a body that was removed";
+    } else if (lua_type(L, -1) == LUA_TSTRING) {
+      const std::string name = boundedString(L, -1, "scene.camera", "follow", kNameBytes);
+      if (const auto id = s.world->findBody(std::string_view(name))) s.settings.camera_follow = *id;
+      else problem = "names no body: " + describe(L, -1);
+    } else {
+      problem = "must be a body or a body's name, got " + describe(L, -1);
+    }
+  });
+  if (error) throw SceneError(s.name + ": " + s.host->errorText(*error, ""));
+  if (!problem.empty()) throw SceneError(s.name + ": scene.camera: follow " + problem);
 }
 
 // The global function `name` (read raw, inside ScriptHost::run), or nil.
@@ -317,6 +353,7 @@ std::unique_ptr<Scene::Impl> load(std::string_view source, const std::string& na
   if (!defined(populate))
     throw SceneError(name + ": PopulateWorld is not defined (a scene must define function PopulateWorld(world))");
   call(*s, populate, "PopulateWorld", s->world_handle);
+  readCameraFollow(*s);
   return s;
 }
 

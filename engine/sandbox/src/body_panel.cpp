@@ -6,6 +6,7 @@
 
 #include <algorithm>
 
+#include "camera_follow.h"
 #include "panel_inputs.h"
 #include "property_panels.h"
 
@@ -13,7 +14,6 @@ namespace rigidlab::sandbox {
 
 namespace {
 
-constexpr float kWidth = 320.0f, kMargin = 8.0f;
 const ImVec4 kDimColor(0.6f, 0.6f, 0.65f, 1.0f);
 
 void bodyFields(BodyProps& edited, EditTracker& t) {
@@ -94,11 +94,10 @@ void bodyWindow(Session& s, PanelState& p) {
   }
   if (p.shown_body != s.selected) p.shape_index = 0;
   p.shown_body = s.selected;
-  // Bottom left, growing upwards, under the controls.
-  const ImGuiIO& io = ImGui::GetIO();
-  ImGui::SetNextWindowPos(ImVec2(kMargin, io.DisplaySize.y - kMargin), ImGuiCond_FirstUseEver, ImVec2(0.0f, 1.0f));
-  ImGui::SetNextWindowSize(ImVec2(kWidth, 0), ImGuiCond_FirstUseEver);
-  ImGui::Begin("Body");
+  if (!p.dock.begin("Body")) {  // in the left column, under the controls
+    p.dock.end();
+    return;
+  }
   const Body& b = w.body(s.selected);
   const char* kind = b.shapes.size() == 1 ? shapeTypeName(w.shape(b.shapes[0]).geometry.type)
                      : b.shapes.empty() ? "no shape" : "compound";
@@ -137,10 +136,13 @@ void bodyWindow(Session& s, PanelState& p) {
       p.edit_before.reset();
     }
   }
+  const bool following = s.follow == s.selected;
+  if (ImGui::Button(following ? "Stop following" : "Follow")) followBody(s, following ? BodyId{} : s.selected);  // also C
+  ImGui::SameLine();
   if (ImGui::Button("Delete")) deleteBody(s, s.selected);
   ImGui::SameLine();
   ImGui::TextColored(kDimColor, "(its joints too)");
-  ImGui::End();
+  p.dock.end();
 }
 
 }  // namespace rigidlab::sandbox

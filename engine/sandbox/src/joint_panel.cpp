@@ -14,7 +14,6 @@ namespace rigidlab::sandbox {
 
 namespace {
 
-constexpr float kWidth = 320.0f, kMargin = 8.0f;
 const ImVec4 kDimColor(0.6f, 0.6f, 0.65f, 1.0f);
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -145,10 +144,10 @@ void jointWindow(Session& s, PanelState& p) {
     p.joint_before.reset();
     return;
   }
-  const ImGuiIO& io = ImGui::GetIO();
-  ImGui::SetNextWindowPos(ImVec2(kMargin, io.DisplaySize.y - kMargin), ImGuiCond_FirstUseEver, ImVec2(0.0f, 1.0f));
-  ImGui::SetNextWindowSize(ImVec2(kWidth, 0), ImGuiCond_FirstUseEver);
-  ImGui::Begin("Joint");
+  if (!p.dock.begin("Joint")) {  // in the left column, under the controls
+    p.dock.end();
+    return;
+  }
   const JointDef current = w.joint(id);
   ImGui::Text("%s joint", jointTypeName(current.type));
   readings(w, id, current);
@@ -189,7 +188,7 @@ void jointWindow(Session& s, PanelState& p) {
     p.joint_before.reset();
   }
   if (ImGui::Button("Delete joint")) deleteJoint(s, id);
-  ImGui::End();
+  p.dock.end();
 }
 
 }  // namespace rigidlab::sandbox

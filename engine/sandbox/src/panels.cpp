@@ -1,5 +1,6 @@
-// Dear ImGui panels (panels.h). Layout for a 1280×720 window: controls on the left, readouts on
-// the right, the world in between; windows can be moved and collapsed.
+// Dear ImGui panels (panels.h), docked in two columns (panel_dock.h): controls, the selection's
+// inspectors and the scene browser on the left, readouts on the right, the world in between; a
+// panel can be collapsed, or dragged away (undocked).
 #include "panels.h"
 
 #include <imgui.h>
@@ -30,9 +31,9 @@ void timelineSection(Session& s) {
   Timeline& t = s.timeline;
   if (t.empty()) return;
   ImGui::Separator();
-  ImGui::Text("timeline: %.1f s, %zu states (1 per %d steps), %.1f MiB (limit %.0f MiB)", t.span(), t.size(),
-              t.limits().every, static_cast<double>(t.bytes()) / (1 << 20),
-              static_cast<double>(t.limits().max_bytes) / (1 << 20));
+  ImGui::TextWrapped("timeline: %.1f s, %zu states (1 per %d steps), %.1f MiB (limit %.0f MiB)", t.span(), t.size(),
+                     t.limits().every, static_cast<double>(t.bytes()) / (1 << 20),
+                     static_cast<double>(t.limits().max_bytes) / (1 << 20));
   int index = static_cast<int>(t.cursor());
   ImGui::PushItemWidth(-1);
   if (ImGui::SliderInt("##timeline", &index, 0, static_cast<int>(t.size()) - 1, "", ImGuiSliderFlags_AlwaysClamp))
@@ -211,16 +212,19 @@ void drawSection(Session& s) {
   ImGui::Checkbox("exact solution ghosts (scenes with Exact)", &d.exact);
 }
 
-void controlsWindow(Session& s) {
-  ImGui::SetNextWindowPos(ImVec2(kPanelMargin, kPanelMargin), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSizeConstraints(ImVec2(kLeftPanelWidth, 0), ImVec2(kLeftPanelWidth, FLT_MAX));
-  ImGui::Begin("rigidlab", nullptr, ImGuiWindowFlags_AlwaysAutoResize);  // grows and shrinks with its sections
-  sceneSection(s);
-  if (ImGui::CollapsingHeader("Tools", ImGuiTreeNodeFlags_DefaultOpen)) toolsSection(s);
-  if (ImGui::CollapsingHeader("World settings")) worldSection(s);
-  if (ImGui::CollapsingHeader("Draw")) drawSection(s);
-  ImGui::TextColored(kDimColor, "F1: all shortcuts");
-  ImGui::End();
+void controlsWindow(Session& s, PanelState& p) {
+  if (p.dock.begin("rigidlab")) {  // the column re-stacks as its sections open and close
+    sceneSection(s);
+    if (ImGui::CollapsingHeader("Tools", ImGuiTreeNodeFlags_DefaultOpen)) toolsSection(s);
+    if (ImGui::CollapsingHeader("World settings")) worldSection(s);
+    if (ImGui::CollapsingHeader("Draw")) drawSection(s);
+    ImGui::TextColored(kDimColor, "F1: all shortcuts");
+    if (p.dock.anyUndocked()) {
+      ImGui::SameLine();
+      if (ImGui::SmallButton("Dock panels")) p.dock.dockAll();  // the ones dragged away
+    }
+  }
+  p.dock.end();
 }
 
 void browserWindow(Session& s, PanelState& p) {
@@ -230,10 +234,7 @@ void browserWindow(Session& s, PanelState& p) {
   }
   if (!p.browser_was_open) p.scenes = browsableScenes();  // fresh list each time it opens
   p.browser_was_open = true;
-  const ImVec2 size(kLeftPanelWidth, 300);
-  ImGui::SetNextWindowPos(ImVec2(kPanelMargin + kLeftPanelWidth + kPanelMargin, kPanelMargin), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(size, ImGuiCond_FirstUseEver);
-  if (ImGui::Begin("Scenes", &s.show_browser)) {
+  if (p.dock.begin("Scenes", &s.show_browser)) {
     ImGui::TextColored(kDimColor, "%s", (lua::scriptsDirectory() / "scenes").string().c_str());
     if (ImGui::SmallButton("refresh")) p.scenes = browsableScenes();
     if (p.scenes.empty()) ImGui::TextColored(kWarnColor, "no scenes found");
@@ -244,46 +245,62 @@ void browserWindow(Session& s, PanelState& p) {
     }
     if (s.loader.busy()) ImGui::TextColored(kDimColor, "loading...");
   }
-  ImGui::End();
+  p.dock.end();
 }
 
-void statisticsWindow(Session& s, PanelState& p, Renderer& r) {
+void statisticsWindow(Session& s, PanelState& p) {
   const ImGuiIO& io = ImGui::GetIO();
-  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - kRightPanelWidth - kPanelMargin, kPanelMargin), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSizeConstraints(ImVec2(kRightPanelWidth, 0), ImVec2(kRightPanelWidth, FLT_MAX));
-  ImGui::Begin("Statistics", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   p.fps = p.fps == 0.0 ? io.Framerate : 0.9 * p.fps + 0.1 * io.Framerate;
-  const StepStats& st = s.world().stats();
-  ImGui::Text("%.0f fps   frame work %.2f ms", p.fps, s.last_frame_ms);
-  ImGui::Text("%d step(s) %.2f ms   step %.3f ms", s.steps_last_frame, s.last_steps_ms, st.total_ms());
-  const double ratio = s.meter.ratio();
-  if (!s.paused && ratio < 0.97 * s.loop.time_scale)
-    ImGui::TextColored(kErrorColor, "slower than real time: %.0f%%", 100.0 * ratio / s.loop.time_scale);
-  else
-    ImGui::Text("sim/real time %.2f   %s", ratio, s.loop.mode == LoopMode::Fixed ? "fixed step" : "variable step");
-  ImGui::Text("bodies %d (%d dynamic, %d awake)   forces %d", st.bodies, st.dynamic_bodies, st.awake_bodies, st.forces);
-  ImGui::Text("pairs %d   contacts %d   points %d", st.pairs, st.contacts, st.contact_points);
-  if (const auto& incidents = s.world().incidents(); !incidents.empty()) {
-    ImGui::PushTextWrapPos(0.0f);
-    ImGui::TextColored(kErrorColor, "%zu body(ies) frozen by the NaN firewall; last: %s", incidents.size(),
-                       incidents.back().message().c_str());
-    ImGui::PopTextWrapPos();
+  if (p.dock.begin("Statistics")) {
+    const StepStats& st = s.world().stats();
+    ImGui::Text("%.0f fps   frame work %.2f ms", p.fps, s.last_frame_ms);
+    ImGui::Text("%d step(s) %.2f ms   step %.3f ms", s.steps_last_frame, s.last_steps_ms, st.total_ms());
+    const double ratio = s.meter.ratio();
+    if (!s.paused && ratio < 0.97 * s.loop.time_scale)
+      ImGui::TextColored(kErrorColor, "slower than real time: %.0f%%", 100.0 * ratio / s.loop.time_scale);
+    else
+      ImGui::Text("sim/real time %.2f   %s", ratio, s.loop.mode == LoopMode::Fixed ? "fixed step" : "variable step");
+    ImGui::Text("bodies %d (%d dynamic, %d awake)", st.bodies, st.dynamic_bodies, st.awake_bodies);
+    ImGui::Text("forces %d   pairs %d", st.forces, st.pairs);
+    ImGui::Text("contacts %d   points %d", st.contacts, st.contact_points);
+    if (const auto& incidents = s.world().incidents(); !incidents.empty()) {
+      ImGui::PushTextWrapPos(0.0f);
+      ImGui::TextColored(kErrorColor, "%zu body(ies) frozen by the NaN firewall; last: %s", incidents.size(),
+                         incidents.back().message().c_str());
+      ImGui::PopTextWrapPos();
+    }
   }
-  if (ImGui::CollapsingHeader("step stages")) {
-    if (ImGui::BeginTable("stages", 2, ImGuiTableFlags_SizingStretchProp)) {
-      const std::pair<const char*, double> rows[] = {
-          {"integrate", st.integrate_ms},     {"  of it forces", st.forces_ms}, {"broad phase", st.broad_phase_ms},
-          {"narrow phase", st.narrow_phase_ms}, {"solve", st.solve_ms},         {"correct positions", st.correct_ms},
-          {"finish", st.finish_ms},           {"step total", st.total_ms()}};
-      for (const auto& [name, ms] : rows) {
+  p.dock.end();
+}
+
+// Each step stage's last, average and largest time over the last seconds, and the step's time as
+// a graph (as Box2D v3's samples show their profile).
+void profileWindow(Session& s, PanelState& p, Renderer& r) {
+  if (p.dock.begin("Profile")) {
+    const ProfileHistory& h = s.profile;
+    ImGui::TextColored(kDimColor, "%zu steps in the last %.0f s, ms", h.steps(), h.window());
+    if (ImGui::BeginTable("stages", 4, ImGuiTableFlags_SizingStretchProp)) {
+      for (const char* head : {"stage", "last", "average", "max"}) ImGui::TableSetupColumn(head);
+      ImGui::TableHeadersRow();
+      for (size_t k = 0; k < kProfileStages.size(); ++k) {
+        const ProfileHistory::Figures f = h.stage(k);
         ImGui::TableNextRow();
         ImGui::TableNextColumn();
-        ImGui::TextUnformatted(name);
-        ImGui::TableNextColumn();
-        ImGui::Text("%.3f ms", ms);
+        ImGui::TextUnformatted(kProfileStages[k]);
+        for (const double ms : {f.last, f.average, f.maximum}) {
+          ImGui::TableNextColumn();
+          ImGui::Text("%.3f", ms);
+        }
       }
       ImGui::EndTable();
     }
+    const std::vector<float> steps = h.stepTimes();
+    const double top = h.stage(kProfileStages.size() - 1).maximum;
+    char label[48];
+    std::snprintf(label, sizeof label, "step, max %.3f ms", top);
+    ImGui::PlotLines("##steps", steps.data(), static_cast<int>(steps.size()), 0, label, 0.0f,
+                     static_cast<float>(std::max(top, 1e-3)), ImVec2(ImGui::GetContentRegionAvail().x, 50));
+    const StepStats& st = s.world().stats();
     ImGui::Text("force evaluations %ld   Lua calls %ld", st.force_evaluations, s.scene->luaCalls());
     ImGui::TextColored(kDimColor, "reloads %d   last load %.1f ms", s.reloads, s.last_load_ms);
     ImGui::TextColored(kDimColor, "watch: %s   %zu vertices drawn", s.watcher.usingInotify() ? "inotify" : "polling",
@@ -292,26 +309,23 @@ void statisticsWindow(Session& s, PanelState& p, Renderer& r) {
       ImGui::TextColored(kWarnColor, "%d shapes drawn as outlines (fills over %.0f window areas)", r.skippedFills(),
                          Renderer::kFillScreens);
   }
-  ImGui::End();
+  p.dock.end();
 }
 
-void energyWindow(Session& s) {
-  const ImGuiIO& io = ImGui::GetIO();
-  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - kRightPanelWidth - kPanelMargin, 140), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(kRightPanelWidth, 200), ImGuiCond_FirstUseEver);
-  ImGui::Begin("Energy");
-  const float text_rows = 3 * ImGui::GetTextLineHeightWithSpacing() + 8;
-  drawEnergyPlot(s.energy, std::max(60.0f, ImGui::GetContentRegionAvail().y - text_rows));
-  ImGui::End();
+void energyWindow(Session& s, PanelState& p) {
+  if (p.dock.begin("Energy")) {
+    const float text_rows = 3 * ImGui::GetTextLineHeightWithSpacing() + 8;
+    drawEnergyPlot(s.energy, std::max(60.0f, ImGui::GetContentRegionAvail().y - text_rows));
+  }
+  p.dock.end();
 }
 
-void exactWindow(Session& s) {
+void exactWindow(Session& s, PanelState& p) {
   const ExactReadout& x = s.exact;
-  if (!x.active && x.error.empty()) return;
-  const ImGuiIO& io = ImGui::GetIO();
-  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - kRightPanelWidth - kPanelMargin, 350), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSizeConstraints(ImVec2(kRightPanelWidth, 0), ImVec2(kRightPanelWidth, FLT_MAX));
-  ImGui::Begin("Exact solution", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  if (!p.dock.begin("Exact solution")) {
+    p.dock.end();
+    return;
+  }
   if (!x.error.empty()) {
     ImGui::PushTextWrapPos(0.0f);
     ImGui::TextColored(kErrorColor, "Exact failed (off until the scene reloads): %s", x.error.c_str());
@@ -342,7 +356,7 @@ void exactWindow(Session& s) {
       ImGui::EndTable();
     }
   }
-  ImGui::End();
+  p.dock.end();
 }
 
 void helpWindow(Session& s) {
@@ -418,14 +432,17 @@ void errorOverlay(Session& s) {
     return;
   }
   const ImGuiIO& io = ImGui::GetIO();
-  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, kPanelMargin), ImGuiCond_Always, ImVec2(0.5f, 0.0f));
-  ImGui::SetNextWindowSizeConstraints(ImVec2(300, 0), ImVec2(std::min(760.0f, io.DisplaySize.x - 40), 400));
+  // Over the world, between the panel columns.
+  const ScreenRect free = freeViewArea(static_cast<int>(io.DisplaySize.x), static_cast<int>(io.DisplaySize.y), s.show_panels);
+  const float width = std::min(760.0f, static_cast<float>(free.width()) - 2 * kPanelMargin);
+  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(free.middle().x()), kPanelMargin), ImGuiCond_Always, ImVec2(0.5f, 0.0f));
+  ImGui::SetNextWindowSizeConstraints(ImVec2(std::min(300.0f, width), 0), ImVec2(width, 400));
   ImGui::PushStyleColor(ImGuiCol_WindowBg, ImVec4(0.35f, 0.05f, 0.05f, 0.92f));
   ImGui::Begin("##error", nullptr,
                ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoFocusOnAppearing |
                    ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove);
   ImGui::TextColored(kWarnColor, "%s", heading.c_str());
-  ImGui::PushTextWrapPos(std::min(740.0f, io.DisplaySize.x - 60));
+  ImGui::PushTextWrapPos(width - 20);
   ImGui::TextUnformatted(text.c_str());
   ImGui::PopTextWrapPos();
   ImGui::End();
@@ -454,14 +471,38 @@ void statusLine(Session& s) {
 }  // namespace
 
 void drawPanels(Session& s, PanelState& p, Renderer& renderer) {
+  // This frame's panels in their columns' order (panel_dock.h), with their first guesses of height.
+  std::vector<DockedPanel> shown;
+  const World& w = s.world();
+  const bool body = w.isValid(s.selected);
+  const bool joint = w.isValid(s.selected_joint) && s.selected_joint != s.tools.drag_joint;
+  const bool exact = s.exact.active || !s.exact.error.empty();
   if (s.show_panels) {
-    controlsWindow(s);
-    statisticsWindow(s, p, renderer);
-    energyWindow(s);
-    exactWindow(s);
-    sceneControlsWindow(s);
+    shown.push_back({"rigidlab", Column::Left, 420.0f});
+    if (body) shown.push_back({"Body", Column::Left, 260.0f});
+    if (joint) shown.push_back({"Joint", Column::Left, 260.0f});
+  }
+  if (s.show_browser) shown.push_back({"Scenes", Column::Left, 300.0f, true});
+  if (s.show_panels) {
+    shown.push_back({"Statistics", Column::Right, 130.0f});
+    if (!s.scene->settings().controls.empty()) shown.push_back({"Controls", Column::Right, 100.0f});
+    shown.push_back({"Energy", Column::Right, 200.0f, true});
+    if (exact) shown.push_back({"Exact solution", Column::Right, 260.0f});
+    shown.push_back({"Profile", Column::Right, 300.0f});
+  }
+  std::vector<ScreenRect> hud;
+  if (const auto r = renderer.hud()) hud.push_back(*r);
+  p.dock.layout(shown, ImGui::GetIO().DisplaySize, hud);
+
+  if (s.show_panels) {
+    controlsWindow(s, p);
     bodyWindow(s, p);
     jointWindow(s, p);
+    statisticsWindow(s, p);
+    sceneControlsWindow(s, p.dock);
+    energyWindow(s, p);
+    if (exact) exactWindow(s, p);
+    profileWindow(s, p, renderer);
   }
   browserWindow(s, p);
   helpWindow(s);

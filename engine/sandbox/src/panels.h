@@ -1,11 +1,13 @@
 // The Dear ImGui panels: controls (scene, tools, world settings, drawing), scene browser,
-// statistics, energy plot, the selected body, help, save dialog, and the error overlay.
+// statistics, profile, energy plot, the selected body or joint, help, save dialog, and the error
+// overlay.
 #pragma once
 
 #include <filesystem>
 #include <optional>
 #include <vector>
 
+#include "panel_dock.h"
 #include "session.h"
 
 namespace rigidlab::sandbox {
@@ -24,6 +26,7 @@ struct PanelState {
   std::vector<std::filesystem::path> scenes;  // browser list, refreshed when the browser opens
   bool browser_was_open = false;
   double fps = 0.0;  // smoothed
+  PanelDock dock;
 };
 
 // Builds this frame's panels (between ImGui::NewFrame and ImGui::Render).

@@ -81,10 +81,24 @@ bool Renderer::init(const std::filesystem::path& assets, std::string& error) {
   return true;
 }
 
+Vec2 Renderer::screenToWorld(const Vec2& px) const {
+  if (!hud_) hud_ = ScreenRect{px, px};
+  hud_->lower = hud_->lower.cwiseMin(px);
+  hud_->upper = hud_->upper.cwiseMax(px);
+  return camera_.screenToWorld(px);
+}
+
+std::optional<ScreenRect> Renderer::hud() const {
+  if (!hud_) return std::nullopt;
+  const Vec2 m(kHudMargin, kHudMargin);
+  return ScreenRect{hud_->lower - m, hud_->upper + m};
+}
+
 void Renderer::begin(const Camera& camera) {
   camera_ = camera;
   vertices_.clear();
   texts_.clear();
+  hud_.reset();
   fill_left_px_ = kFillScreens * camera.width_px * camera.height_px;
   last_skipped_fills_ = skipped_fills_;
   skipped_fills_ = 0;

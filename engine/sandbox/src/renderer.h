@@ -6,6 +6,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -59,7 +60,7 @@ class Renderer final : public DebugDraw, public lua::OverlayDraw {
   void polygon(std::span<const Vec2> points, const Color& color, const std::optional<Color>& fill) override;
   void capsule(const Vec2& a, const Vec2& b, double radius, const Color& color, const std::optional<Color>& fill) override;
   void disc(const Vec2& center, double radius, const Color& color, const Color& fill) override;
-  Vec2 screenToWorld(const Vec2& px) const override { return camera_.screenToWorld(px); }
+  Vec2 screenToWorld(const Vec2& px) const override;
   double metresPerPixel() const override { return 1.0 / camera_.pixels_per_metre; }
   // A scene's polygon of more points than this is drawn as its outline only (filling a concave one
   // splits it into convex pieces, which takes time cubic in the points at worst).
@@ -68,6 +69,12 @@ class Renderer final : public DebugDraw, public lua::OverlayDraw {
   // Outlines only (tool previews, overlay circles).
   void drawCircleOutline(const Vec2& center, double radius, const Color& color);
   void drawPolyline(std::span<const Vec2> points, bool closed, const Color& color);
+
+  // The scene's HUD this frame: the pixels its draw.screen calls named (corners, centres, text
+  // anchors), grown by kHudMargin (texts reach right of and below their anchor); none if it drew
+  // nothing in screen space. The panels are docked clear of it.
+  std::optional<ScreenRect> hud() const;
+  static constexpr double kHudMargin = 12.0;
 
   size_t vertexCount() const { return last_vertex_count_; }  // of the last flush
   // Filled shapes of the last frame drawn as outlines only because the frame's fill budget was
@@ -107,6 +114,7 @@ class Renderer final : public DebugDraw, public lua::OverlayDraw {
     Color color;
   };
   std::vector<Text> texts_;
+  mutable std::optional<ScreenRect> hud_;  // screenToWorld's arguments this frame
 };
 
 }  // namespace rigidlab::sandbox

@@ -25,7 +25,9 @@
 #include <thread>
 
 #include "assets.h"
+#include "camera_follow.h"
 #include "gl.h"
+#include "panel_layout.h"
 #include "panels.h"
 #include "renderer.h"
 #include "screenshot.h"
@@ -84,7 +86,7 @@ struct Window {
 };
 
 // A window with an OpenGL 3.3 core context, multisampled if the system offers it (see above).
-bool openWindow(Window& w, std::string& error) {
+bool openWindow(Window& w, int width, int height, std::string& error) {
   SDL_GL_SetAttribute(SDL_GL_CONTEXT_MAJOR_VERSION, 3);
   SDL_GL_SetAttribute(SDL_GL_CONTEXT_MINOR_VERSION, 3);
   SDL_GL_SetAttribute(SDL_GL_CONTEXT_PROFILE_MASK, SDL_GL_CONTEXT_PROFILE_CORE);
@@ -96,7 +98,7 @@ bool openWindow(Window& w, std::string& error) {
   for (const int samples : {requested.value_or(4), 0}) {
     SDL_GL_SetAttribute(SDL_GL_MULTISAMPLEBUFFERS, samples > 0 ? 1 : 0);
     SDL_GL_SetAttribute(SDL_GL_MULTISAMPLESAMPLES, samples);
-    w.window = SDL_CreateWindow("rigidlab", SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED, 1280, 720, flags);
+    w.window = SDL_CreateWindow("rigidlab", SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED, width, height, flags);
     if (w.window) w.gl = SDL_GL_CreateContext(w.window);
     if (w.gl && samples > 0 && !requested && softwareRenderer()) {
       SDL_GL_DeleteContext(w.gl);  // software GL: try again without multisampling
@@ -160,6 +162,25 @@ void drawWorld(Session& s, Renderer& renderer) {
   renderer.flush();
 }
 
+// --layout-file: the windows' rectangles (panel_dock.h), and where the camera is and the
+// followed body is drawn.
+bool writeLayout(const std::filesystem::path& file, Session& s, const Renderer& renderer, std::string& error) {
+  const Camera& c = s.camera;
+  std::vector<ScreenRect> hud;
+  if (const auto r = renderer.hud()) hud.push_back(*r);
+  char line[256];
+  std::vector<std::string> extra;
+  std::snprintf(line, sizeof line, "camera %.6g %.6g %.6g", c.pixels_per_metre, c.center.x(), c.center.y());
+  extra.push_back(line);
+  if (s.world().isValid(s.follow)) {
+    const Vec2 at = c.worldToScreen(drawnCenter(s, s.follow));
+    std::snprintf(line, sizeof line, "follow %.1f %.1f %s", at.x(), at.y(), describe(s.world(), s.follow).c_str());
+    extra.push_back(line);
+  }
+  return writeWindowRects(file.string(), ImGui::GetIO().DisplaySize,
+                          freeViewArea(c.width_px, c.height_px, s.show_panels), hud, extra, error);
+}
+
 }  // namespace
 
 int runSandbox(const SandboxOptions& options) {
@@ -172,7 +193,7 @@ int runSandbox(const SandboxOptions& options) {
   }
   Window w;
   std::string error;
-  if (!openWindow(w, error)) {
+  if (!openWindow(w, options.width, options.height, error)) {
     std::fprintf(stderr, "rigidlab: cannot open an OpenGL 3.3 window: %s\n", error.c_str());
     return kNoDisplay;
   }
@@ -226,9 +247,10 @@ int runSandbox(const SandboxOptions& options) {
             quit = true;
           handleEvent(s, event, {io.WantCaptureMouse, io.WantCaptureKeyboard});
         }
-        // Closed early (window, SIGTERM) under --frames: this frame is still drawn, for the screenshot.
+        // Closed early (window, SIGTERM) under --frames: this frame is still drawn, for the screenshot
+        // and the layout file.
         const bool last_frame = (options.frames && frame == *options.frames) || quit;
-        if (quit && !(automated && !options.screenshot.empty())) break;
+        if (quit && !(automated && (!options.screenshot.empty() || !options.layout_file.empty()))) break;
 
         updateHotReload(s);
         syncTimeline(s);  // rewind.cpp: an edit at a past state drops its future
@@ -237,6 +259,7 @@ int runSandbox(const SandboxOptions& options) {
 
         SDL_GL_GetDrawableSize(w.window, &width, &height);
         s.camera.resize(width, height);
+        updateFollow(s);
         drawWorld(s, renderer);
 
         ImGui_ImplOpenGL3_NewFrame();
@@ -246,6 +269,10 @@ int runSandbox(const SandboxOptions& options) {
         drawPanels(s, panels, renderer);
         ImGui::Render();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        if (automated && last_frame && !options.layout_file.empty() && !writeLayout(options.layout_file, s, renderer, error)) {
+          std::fprintf(stderr, "rigidlab: layout file: %s\n", error.c_str());
+          exit_code = 1;
+        }
 
         if (automated && last_frame && !options.screenshot.empty()) {
           if (!writeScreenshot(options.screenshot, width, height, error)) {

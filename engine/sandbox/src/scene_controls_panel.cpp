@@ -3,21 +3,15 @@
 
 #include <imgui.h>
 
-#include <cfloat>
-
-#include "panel_layout.h"
-
 namespace rigidlab::sandbox {
 
-void sceneControlsWindow(Session& s) {
+void sceneControlsWindow(Session& s, PanelDock& dock) {
   const auto& controls = s.scene->settings().controls;
   if (controls.empty()) return;
-  const ImGuiIO& io = ImGui::GetIO();
-  // In the readouts column, under the energy plot (and the exact solution's readout, if shown).
-  const float top = s.exact.active || !s.exact.error.empty() ? 560.0f : 350.0f;
-  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - kRightPanelWidth - kPanelMargin, top), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSizeConstraints(ImVec2(kRightPanelWidth, 0), ImVec2(kRightPanelWidth, FLT_MAX));
-  ImGui::Begin("Controls", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  if (!dock.begin("Controls")) {
+    dock.end();
+    return;
+  }
   ImGui::PushItemWidth(180);
   for (size_t i = 0; i < controls.size(); ++i) {
     const auto& c = controls[i];
@@ -37,7 +31,7 @@ void sceneControlsWindow(Session& s) {
     ImGui::PopID();
   }
   ImGui::PopItemWidth();
-  ImGui::End();
+  dock.end();
 }
 
 }  // namespace rigidlab::sandbox

@@ -39,8 +39,33 @@ WorldOverrides currentValues(const lua::Scene& scene) {
           def.warm_starting, def.sleeping,  def.contact_solver, def.substeps};
 }
 
-// The scene's camera as given (its centre is the window's middle, as saved worlds store it);
-// without one the bodies are framed in the part of the window the panels leave free.
+// A scene's own view (scene.camera) shows, in the part of the window the panels leave free, the
+// moving bodies it would show in the whole window: the view zooms out (never in) about the point
+// at the free area's middle until they fit its width, so none starts behind a panel. Static
+// bodies (a long ground) and moving ones outside that view do not count.
+void keepMovingBodiesClearOfPanels(Session& s, const ScreenRect& area) {
+  Camera& c = s.camera;
+  const Vec2 lo = c.screenToWorld(Vec2(0, c.height_px)), hi = c.screenToWorld(Vec2(c.width_px, 0));
+  const Vec2 focus = c.screenToWorld(area.middle());
+  double reach = 0.0;  // the farthest x of a moving body's part in the view from the focus [m]
+  const World& w = s.world();
+  for (const BodyId id : w.bodyIds()) {
+    const Body& b = w.body(id);
+    if (b.isStatic()) continue;
+    for (const ShapeId sid : b.shapes) {
+      const Aabb a = computeAabb(w.shape(sid).geometry, b.xf);
+      if (a.upper.x() < lo.x() || a.lower.x() > hi.x() || a.upper.y() < lo.y() || a.lower.y() > hi.y()) continue;
+      reach = std::max({reach, std::min(a.upper.x(), hi.x()) - focus.x(), focus.x() - std::max(a.lower.x(), lo.x())});
+    }
+  }
+  const double room = 0.5 * 0.95 * area.width();  // px from the middle, 5 % kept as a margin
+  if (reach * c.pixels_per_metre <= room) return;
+  c.pixels_per_metre = std::max(room / reach, Camera::kMinPixelsPerMetre);
+  c.placeAt(focus, area.middle());
+}
+
+// The scene's camera (its centre at the middle of the part of the window the panels leave free,
+// as saved worlds store it); without one the bodies are framed there.
 void placeCamera(Session& s) {
   const lua::SceneSettings& settings = s.scene->settings();
   const ScreenRect area = freeViewArea(s.camera.width_px, s.camera.height_px, s.show_panels);
@@ -55,7 +80,8 @@ void placeCamera(Session& s) {
     s.camera.setHeightMetres(*settings.camera_height);
     if (box) s.camera.placeAt(0.5 * (box->lower + box->upper), area.middle());
   }
-  if (settings.camera_center) s.camera.center = *settings.camera_center;
+  if (settings.camera_center) s.camera.placeAt(*settings.camera_center, area.middle());
+  if (settings.camera_center || settings.camera_height) keepMovingBodiesClearOfPanels(s, area);
 }
 
 // A script failed while running: the simulation pauses and says why (overlay and standard error).
@@ -128,6 +154,8 @@ void adoptScene(Session& s, LoadResult r) {
   s.exact.reset(*s.scene);
   s.exact.update(*s.scene);
   s.incidents_seen = 0;
+  s.profile.clear();
+  s.follow = s.scene->settings().camera_follow.value_or(BodyId{});  // the scene's, also on a reload
   s.selected = {};
   s.selected_joint = {};
   s.tools.polygon.clear();
@@ -197,6 +225,7 @@ void afterSteps(Session& s) {
 bool guardedStep(Session& s, double dt) {
   try {
     s.scene->step(dt);
+    s.profile.add(s.world().stats(), std::chrono::duration<double>(Session::Clock::now().time_since_epoch()).count());
     return true;
   } catch (const std::exception& e) {
     pauseOnScriptError(s, e);
@@ -302,6 +331,7 @@ bool runSceneHook(Session& s, const std::function<bool()>& hook) {
 }
 
 void fitCamera(Session& s) {
+  s.follow = {};  // the whole scene, not one body
   if (const auto box = worldBounds(s.world()))
     s.camera.fitIn(*box, freeViewArea(s.camera.width_px, s.camera.height_px, s.show_panels));
 }
@@ -458,7 +488,8 @@ bool saveWorld(Session& s, const fs::path& path, std::string& message) {
     }
   }
   lua::SceneSettings settings = s.scene->settings();
-  settings.camera_center = s.camera.center;
+  // The world point at the free area's middle, where the saved scene puts it again (placeCamera).
+  settings.camera_center = s.camera.screenToWorld(freeViewArea(s.camera.width_px, s.camera.height_px, s.show_panels).middle());
   settings.camera_height = s.camera.heightMetres();
   try {
     lua::saveScene(s.world(), settings, path, s.scene_options.limits.source_bytes);

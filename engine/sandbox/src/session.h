@@ -19,6 +19,7 @@
 #include "frame_clock.h"
 #include "hot_reload.h"
 #include "interpolation.h"
+#include "profile_history.h"
 #include "rigidlab/lua/scene.h"
 #include "timeline.h"
 #include "undo.h"
@@ -99,6 +100,7 @@ struct Session {
 
   // --- view
   Camera camera;
+  BodyId follow;  // the body the camera keeps in the middle of the view (camera_follow.h); null: none
   DrawToggles draw;
   bool show_panels = true, show_help = false, show_browser = false;
 
@@ -119,6 +121,7 @@ struct Session {
   UndoHistory undo;
   TransformHistory history;
   EnergyHistory energy;
+  ProfileHistory profile;         // the step stages' times over the last seconds (Profile panel)
   Timeline timeline;              // recent states, for stepping back and scrubbing (rewind.cpp)
   size_t timeline_undo_mark = 0;  // undo.size() when the timeline last looked (syncTimeline)
   ExactReadout exact;

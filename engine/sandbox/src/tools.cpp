@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "camera_follow.h"
 #include "joint_tool.h"
 #include "mouse_drag.h"
 #include "mouse_event.h"
@@ -52,7 +53,8 @@ constexpr Shortcut kShortcuts[] = {
     {"Esc", "cancel the gesture, drop the polygon or the joint's first click, deselect"},
     {"Right or middle drag, arrow keys", "pan the camera"},
     {"Wheel, + / -", "zoom about the cursor / the centre"},
-    {"F", "fit the scene in the window"},
+    {"F", "fit the scene in the window (stops following)"},
+    {"C", "camera: follow the selected body, or stop following (a pan stops it too)"},
     {"F2 F3 F4", "draw contact points / normals / impulses"},
     {"F6 F7 F8", "draw bounding boxes / centres of mass / velocities"},
     {"F10", "draw joints"},
@@ -188,6 +190,13 @@ void pressPolygon(Session& s) {
   t.polygon.push_back(p);
 }
 
+// A pan by the user: the view is theirs, so the camera stops following a body.
+void panCamera(Session& s, const Vec2& delta_px) {
+  if (delta_px.isZero()) return;
+  followBody(s, {});
+  s.camera.pan(delta_px);
+}
+
 void deleteSelected(Session& s) {
   if (s.world().isValid(s.selected_joint)) deleteJoint(s, s.selected_joint);
   else deleteBody(s, s.selected);
@@ -252,10 +261,15 @@ bool handleKey(Session& s, const SDL_KeyboardEvent& key) {
       else if (!t.joint_body.isNull()) t.joint_body = {};
       else select(s, {});
       break;
-    case SDLK_LEFT: s.camera.pan(Vec2(pan, 0)); break;
-    case SDLK_RIGHT: s.camera.pan(Vec2(-pan, 0)); break;
-    case SDLK_UP: s.camera.pan(Vec2(0, pan)); break;
-    case SDLK_DOWN: s.camera.pan(Vec2(0, -pan)); break;
+    case SDLK_LEFT: panCamera(s, Vec2(pan, 0)); break;
+    case SDLK_RIGHT: panCamera(s, Vec2(-pan, 0)); break;
+    case SDLK_UP: panCamera(s, Vec2(0, pan)); break;
+    case SDLK_DOWN: panCamera(s, Vec2(0, -pan)); break;
+    case SDLK_c:
+      if (!s.follow.isNull()) followBody(s, {});
+      else if (s.world().isValid(s.selected)) followBody(s, s.selected);
+      else s.setStatus("select a body to follow (C)");
+      break;
     case SDLK_PLUS:
     case SDLK_EQUALS:
     case SDLK_KP_PLUS: s.camera.zoomAbout(middle, kZoomStep); break;
@@ -397,7 +411,7 @@ void handleEvent(Session& s, const SDL_Event& e, InputCapture capture) {
       const Vec2 previous = t.mouse_px;
       t.mouse_px = Vec2(e.motion.x, e.motion.y);
       if (!capture.mouse && offerToScene(s, e)) return;
-      if (t.gesture == Gesture::Pan) s.camera.pan(t.mouse_px - previous);
+      if (t.gesture == Gesture::Pan) panCamera(s, t.mouse_px - previous);
       else if (t.gesture == Gesture::Move || t.gesture == Gesture::Rotate) moveGesture(s);
       return;
     }
@@ -464,9 +478,12 @@ void drawToolOverlay(const Session& s, Renderer& r) {
   const World& w = s.world();
   const Vec2 p = cursorWorld(s);
   if (t.gesture == Gesture::Drag && w.isValid(t.drag_joint)) {
-    // The pull as a spring from the grabbed point to the cursor, over the joint's straight line.
+    // The pull as a line from the grabbed point on the body to the cursor, both ends marked (as
+    // Box2D's samples draw their mouse joint).
     const DragLine line = dragLine(w, t.drag_joint);
-    r.drawSpring(line.grabbed, line.target, s.camera.metres(10.0), Palette::drag);
+    r.drawSegment(line.grabbed, line.target, Palette::drag);
+    r.drawPoint(line.grabbed, 7.0f, Palette::drag);
+    r.drawPoint(line.target, 7.0f, Palette::drag);
   }
   if (w.isValid(s.selected_joint)) {  // rings round the selected joint's anchors
     const JointState js = w.jointState(s.selected_joint);

@@ -9,13 +9,17 @@ namespace rigidlab::lua {
 
 // The directory `name` ("scripts" or "assets") of this installation:
 //   1. $<env_var> if it is set and not empty (a user's own copy);
-//   2. share/rigidlab/<name> in the running executable's directory or one of its four parents:
+//   2. in a program of a user's own built with find_package(rigidlab): share/rigidlab/<name> of
+//      the package it was built against, wherever that was installed (the libraries are static and
+//      cannot find themselves at run time, so the package config compiles its place into the
+//      program);
+//   3. share/rigidlab/<name> in the running executable's directory or one of its four parents:
 //      an install puts the program in <prefix>/bin and the files in <prefix>/share/rigidlab; a
 //      build tree links <build>/share/rigidlab to the sources, for the program in <build> and the
 //      test programs in <build>/tests/...;
-//   3. <install prefix>/share/rigidlab/<name>, the prefix this library was configured for (a
-//      program of a user's own that links the installed library).
-// Returns the last candidate when none exists, so error messages name a concrete place.
+//   4. <install prefix>/share/rigidlab/<name>, the prefix this library was configured for.
+// Returns the package's (2) or else the configured (4) place when none exists, so error messages
+// name a concrete place.
 std::filesystem::path dataDirectory(std::string_view name, const char* env_var);
 
 }  // namespace rigidlab::lua

@@ -56,6 +56,9 @@ struct SceneSettings {
   // the middle of the window and the height of the view in metres. Unset: fit to the scene.
   std::optional<Vec2> camera_center;
   std::optional<double> camera_height;
+  // `scene.camera = {follow = body}` (a body or a body's name, read after PopulateWorld): the
+  // camera keeps this body in the middle of the view.
+  std::optional<BodyId> camera_follow;
   // `scene.expect_incidents = true`: bodies frozen by the NaN firewall or a non-finite energy are
   // what the scene is about (a test of the firewall), so a headless run still exits with 0.
   bool expect_incidents = false;

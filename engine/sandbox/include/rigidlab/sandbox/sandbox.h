@@ -13,6 +13,11 @@ struct SandboxOptions {
   // still paced in real time, so file edits during the run are seen as a user would see them.
   std::optional<int> frames;
   std::filesystem::path screenshot;   // with `frames`: a PNG of the last frame drawn (the Nth, or the one when the window closed)
+  int width = 1280, height = 720;     // the window's size at start [px]
+  // With `frames`: where every panel was in the last frame drawn, as text (lines "panel X0 Y0 X1
+  // Y1 NAME", the free view area, the scene's HUD, the camera and the followed body), for tests of
+  // the layout (docs/sandbox.md "Automation").
+  std::filesystem::path layout_file;
 };
 
 // Returned by runSandbox when no window can be opened (no display): the caller runs headless.
