@@ -16,7 +16,7 @@
 #include "rigidlab/lua/scene.h"
 #include "rigidlab/lua/scene_text.h"
 #include "rigidlab/world_snapshot.h"
-#include "text_file.h"
+#include "state_file.h"
 
 namespace rigidlab::app {
 namespace {
@@ -168,7 +168,7 @@ int runCommand(const std::vector<std::string>& argv) {
   StateLabel label;
   if (load_state) {
     try {
-      loaded = deserializeSnapshot(readFile(*load_state));
+      loaded = readStateFile(*load_state);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "run: --load-state %s: %s\n", load_state->c_str(), e.what());
       return kExitUsage;
@@ -208,7 +208,12 @@ int runCommand(const std::vector<std::string>& argv) {
   std::optional<RunLength> length = runLength(*scene, time, steps, refused);
   if (!length) {
     std::fprintf(stderr, "run: %s\n", refused.c_str());
-    return time || steps || dt ? kExitUsage : kExitSceneError;  // the command line's or the scene's settings
+    // Whose numbers asked for too many steps: --steps and --dt are the command line's; with the
+    // scene's own dt, --time is at fault only if the scene's own length would have been allowed
+    // (a dt of 1e-12 is the scene's error whatever --time says).
+    std::string ignored;
+    const bool command_line = steps || dt || (time && runLength(*scene, std::nullopt, std::nullopt, ignored));
+    return command_line ? kExitUsage : kExitSceneError;
   }
   // Resumed: until the same end time, by the steps the uninterrupted run would still take.
   if (load_state && !steps) length->full_steps = std::max(0L, length->full_steps - world.stepCount());
@@ -237,8 +242,15 @@ int runCommand(const std::vector<std::string>& argv) {
     return kExitSceneError;
   }
   if (const auto path = args.value("save-state")) {
+    WorldSnapshot state;
     try {
-      writeFile(*path, serializeSnapshot(scene->snapshot()));
+      state = scene->snapshot();  // runs the scene's SaveState: its errors are the scene's
+    } catch (const lua::SceneError& e) {
+      std::fprintf(stderr, "%s\n", sceneErrorText(e).c_str());
+      return kExitSceneError;
+    }
+    try {
+      writeStateFile(*path, state);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "run: --save-state %s: %s\n", path->c_str(), e.what());
       return kExitUsage;

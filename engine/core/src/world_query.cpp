@@ -208,6 +208,7 @@ std::vector<BodyId> World::explode(const ExplosionDef& def) {
   });
   std::sort(shapes.begin(), shapes.end());  // deterministic: slot order, whatever the tree
   std::vector<BodyId> pushed;
+  std::vector<char> listed(w.bodies.size(), 0);  // per slot: in `pushed` (a search of it would cost n² for n bodies)
   for (uint32_t s : shapes) {
     Body& b = w.bodies[w.shapes[s].body.index];
     Vec2 on_shape, on_centre;
@@ -221,7 +222,10 @@ std::vector<BodyId> World::explode(const ExplosionDef& def) {
     const double magnitude = def.impulse * scale * projectedWidth(w.shapes[s].geometry, b.xf, direction);
     if (magnitude == 0.0) continue;
     applyImpulse(b.id, magnitude * direction, on_shape);
-    if (std::find(pushed.begin(), pushed.end(), b.id) == pushed.end()) pushed.push_back(b.id);
+    if (!listed[b.id.index]) {
+      listed[b.id.index] = 1;
+      pushed.push_back(b.id);
+    }
   }
   return pushed;
 }

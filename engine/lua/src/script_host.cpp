@@ -12,6 +12,7 @@
 #include "lua_args.h"
 #include "lua_math.h"
 #include "ordered_pairs.h"
+#include "rigidlab/lua/bounded_file.h"
 #include "rigidlab/lua/scene_text.h"
 #include "scene_line.h"
 
@@ -588,17 +589,11 @@ void ScriptHost::runPrelude() {
 }
 
 std::string ScriptHost::readSource(const std::filesystem::path& file, const std::string& name) const {
-  std::error_code ec;
-  const auto size = std::filesystem::file_size(file, ec);
-  if (ec) throw SceneError(name + ": cannot read: " + ec.message());
-  if (size > options_.limits.source_bytes)
-    throw SceneError(name + ": file is " + std::to_string(size) + " bytes, larger than the limit of " +
-                     std::to_string(options_.limits.source_bytes));
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw SceneError(name + ": cannot read: " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  try {
+    return readBoundedFile(file, options_.limits.source_bytes, name, "a module file");
+  } catch (const std::runtime_error& e) {
+    throw SceneError(e.what());
+  }
 }
 
 void ScriptHost::pushChunk(std::string_view source, const std::string& name) {
