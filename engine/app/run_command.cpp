@@ -170,7 +170,7 @@ int runCommand(const std::vector<std::string>& argv) {
     try {
       loaded = readStateFile(*load_state);
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "run: --load-state %s: %s\n", load_state->c_str(), e.what());
+      std::fprintf(stderr, "run: --load-state: %s\n", e.what());  // the message starts with the file
       return kExitUsage;
     }
     label = parseStateLabel(loaded.label());
@@ -252,7 +252,7 @@ int runCommand(const std::vector<std::string>& argv) {
     try {
       writeStateFile(*path, state);
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "run: --save-state %s: %s\n", path->c_str(), e.what());
+      std::fprintf(stderr, "run: --save-state: %s\n", e.what());  // the message names the file
       return kExitUsage;
     }
   }

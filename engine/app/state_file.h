@@ -16,7 +16,8 @@ inline constexpr size_t kMaxStateBytes = size_t{256} << 20;
 
 // Reads the header first: a file that is not a snapshot (/dev/zero) is refused after 30 bytes, one
 // whose header announces more than kMaxStateBytes before its payload is read, and nothing is
-// allocated beyond the bytes read. Throws lua::FileUnreadable, lua::FileTooLarge or SnapshotError.
+// allocated beyond the bytes read. Throws lua::FileUnreadable, lua::FileTooLarge or SnapshotError,
+// each message starting with `path`.
 WorldSnapshot readStateFile(const std::string& path);
 
 // Writes the snapshot into `path`, whose folder must exist; throws std::runtime_error if it does

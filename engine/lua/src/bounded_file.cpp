@@ -15,8 +15,11 @@ namespace rigidlab::lua {
 
 BoundedFile::BoundedFile(const std::filesystem::path& file, size_t limit, std::string name, std::string what)
     : limit_(limit), name_(std::move(name)), what_(std::move(what)) {
-  fd_ = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
+  // Opened without waiting (a named pipe without a writer would block open() for ever, where no
+  // budget can stop it), then read with blocking reads (such a pipe then reads as empty).
+  fd_ = ::open(file.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (fd_ < 0) throw FileUnreadable(name_ + ": cannot read the file (" + std::strerror(errno) + ")");
+  if (const int flags = ::fcntl(fd_, F_GETFL); flags >= 0) ::fcntl(fd_, F_SETFL, flags & ~O_NONBLOCK);
   struct stat st {};
   if (::fstat(fd_, &st) == 0 && S_ISREG(st.st_mode)) known_size_ = static_cast<long long>(st.st_size);
   if (S_ISDIR(st.st_mode)) {

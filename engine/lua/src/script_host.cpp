@@ -673,7 +673,12 @@ int ScriptHost::requireModule(lua_State* L) {
   if (found.empty()) fail(L, "require", "module '" + name + "' not found (looked for " + relative + " in " + looked + ")");
 
   const std::string display = found.lexically_normal().string();
-  const std::string source = readSource(real, display);  // the file checked, not the link again
+  std::string source;
+  try {
+    source = readSource(real, display);  // the file checked, not the link again
+  } catch (const SceneError& e) {
+    fail(L, "require", e.what());  // "require: forces/big.lua: the file is ... bytes, more than the limit ..."
+  }
   if (std::find(required_.begin(), required_.end(), found) == required_.end()) required_.push_back(found);
   ++calls;
   lua_pushcfunction(L, messageHandler);
