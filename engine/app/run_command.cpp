@@ -42,20 +42,22 @@ Runs a scene headless: PopulateWorld, then steps (calling OnStep after each), th
   --trace-every K   ... every K steps (default 1), plus the initial and the final state
   --quiet           no summary (errors and the scene's print output still appear)
   --save-state FILE write the whole simulation state at the end of the run (before Check) to
-                    FILE: a snapshot naming the scene file and its dt (docs/testing.md
-                    "Snapshots"), e.g. to attach to a bug report
+                    FILE, whose folder must exist: a snapshot naming the scene file and its dt
+                    (docs/testing.md "Snapshots"), e.g. to attach to a bug report
   --load-state FILE load the scene the snapshot names (or SCENE, which must be the same file
                     unless --force), run PopulateWorld, put the world in the snapshot's state,
                     then continue: --time T runs until t = T (default: the scene's duration),
                     --steps N runs N more steps. The steps after a resume give the same bits as
                     the uninterrupted run; the scene's Lua variables start as after PopulateWorld,
-                    then as its LoadState sets them from what its SaveState saved
+                    then as its LoadState sets them from what its SaveState saved. A state file
+                    is at most 256 MiB
   --force           with --load-state: accept a snapshot of another scene file
 
 A run may take at most 10000000 steps (--steps, or --time / the scene's duration divided by
 dt): a longer one is refused before it starts.
 
-Exit status: 0 success, 1 scene error or failed Check, 2 usage error, 3 the run blew up: the
+Exit status: 0 success, 1 scene error (in any hook, SaveState and LoadState included, or a dt of
+the scene's that asks for too many steps) or failed Check, 2 usage error, 3 the run blew up: the
 NaN firewall froze a body or the energy became non-finite (listed as "incidents" in the summary
 and the JSON), unless the scene sets scene.expect_incidents = true.
 )";

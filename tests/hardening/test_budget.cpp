@@ -26,13 +26,6 @@ using namespace rigidlab;
 
 namespace {
 
-SceneOptions budgets(double hook_s, double force_s) {
-  SceneOptions o;
-  o.limits.hook_seconds = hook_s;
-  o.limits.force_seconds = force_s;
-  return o;
-}
-
 // The contexts a runaway can run in, each as a scene whose `code` loops and the action that runs it.
 struct Context {
   const char* name;     // as the message names it

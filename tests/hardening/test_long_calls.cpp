@@ -16,13 +16,6 @@ using namespace rigidlab;
 
 namespace {
 
-SceneOptions budgets(double hook_s, double force_s) {
-  SceneOptions o;
-  o.limits.hook_seconds = hook_s;
-  o.limits.force_seconds = force_s;
-  return o;
-}
-
 // A chain of n points along a gentle wave: the shape of a hostile terrain.
 std::vector<Vec2> wave(int n) {
   std::vector<Vec2> points;

@@ -21,6 +21,14 @@ inline SceneOptions quiet(SceneOptions o = {}) {
   return o;
 }
 
+// Options with these budgets [s] (ScriptLimits::hook_seconds, force_seconds).
+inline SceneOptions budgets(double hook_s, double force_s) {
+  SceneOptions o;
+  o.limits.hook_seconds = hook_s;
+  o.limits.force_seconds = force_s;
+  return o;
+}
+
 inline std::unique_ptr<Scene> load(const std::string& source, SceneOptions options = {}) {
   return Scene::loadString(source, "test.lua", quiet(std::move(options)));
 }

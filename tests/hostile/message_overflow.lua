@@ -19,9 +19,11 @@
 -- expect: add_chain: points[2] (1e+154, 0) is too far from the point before it, (-1e+154, 0): the segment's length overflows
 -- expect: add_chain: points[1] (-1.7e+308, 0) is too far from the body's origin
 -- expect: add_shape: offset (1.7e+308, 0) puts the shape out of range
+-- expect: explode: radius is too large: radius + falloff (1e+308) must be below about 1e154 m (its square overflows)
 -- expect: add_revolute: anchor (1.7e+308, 0) is too far from body a: the lever arm overflows
 -- expect: add_distance: anchor_a (-1.7e+308, 0) is too far from body a: the lever arm overflows
 -- expect: prismatic axis (1.7e+308, 1.7e+308): ok
+-- expect: query_box 2e100 wide: 2 shapes
 -- reject: PopulateWorld: width
 -- reject: must differ
 -- reject: distinct points
@@ -32,6 +34,7 @@ function PopulateWorld(world)
     print(ok and "accepted" or message)
   end
   try(world.query_box, { lower = {-1.7e308, -1.7e308}, upper = {1.7e308, 1.7e308} })
+  try(world.explode, { position = {1e200, 0}, radius = 1e308, impulse = 1 })
   try(world.ray_cast, { from = {-1.7e308, 0}, to = {1.7e308, 0} })
   try(world.ray_cast_all, { from = {-1.7e308, 0}, to = {1.7e308, 0} })
   try(world.shape_cast, { shape = {shape = "circle", radius = 1}, from = {-1.7e308, 0}, to = {1.7e308, 0} })
@@ -53,4 +56,6 @@ function PopulateWorld(world)
   -- A direction whose length overflows is still a direction.
   local slider = world:add_prismatic{ a = a, b = b, anchor = {0, 0}, axis = {1.7e308, 1.7e308} }
   print("prismatic axis (1.7e+308, 1.7e+308): " .. (slider and "ok" or "refused"))
+  -- A box query too large to be a shape (its moment of inertia would overflow) still answers.
+  print("query_box 2e100 wide: " .. #world:query_box{ lower = {-1e100, -1e100}, upper = {1e100, 1e100} } .. " shapes")
 end

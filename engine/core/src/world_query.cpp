@@ -114,10 +114,17 @@ std::vector<ShapeId> World::queryBox(const Aabb& box, const QueryFilter& filter)
   if (box.lower.x() > box.upper.x() || box.lower.y() > box.upper.y())
     throw InputError("lower", "lower " + formatVec(box.lower) + " must not exceed upper " + formatVec(box.upper));
   w.syncTree();
-  // The box as a polygon (or a segment or point when it is flat), for the exact test.
+  // The box as a polygon (or a segment or point when it is flat), for the exact test. A box too
+  // large to be a shape (its moment of inertia overflows, about 1e77 m) gets the bounds test alone:
+  // it differs from the exact one only for shapes across its far edges.
   const Vec2 size = box.upper - box.lower;
-  const Shape query = size.x() > 0.0 && size.y() > 0.0 ? makeBox(size.x(), size.y(), 0.5 * (box.lower + box.upper))
-                                                       : Shape{};
+  Shape query;
+  if (size.x() > 0.0 && size.y() > 0.0) {
+    try {
+      query = makeBox(size.x(), size.y(), 0.5 * (box.lower + box.upper));
+    } catch (const InputError&) {
+    }
+  }
   std::vector<ShapeId> out;
   w.tree.queryContained(box, [&](uint32_t s, bool contained) {
     if (!accepts(w, s, filter)) return true;

@@ -112,7 +112,7 @@ class Watchdog {
         if (s < Budget::kFirstWindow) continue;
         // Read after the window's serial (acquire): its deadlines. If the window changes meanwhile,
         // the compare-and-swap below fails.
-        const int64_t cpu = clockNs(b->cpu_clock_);
+        const int64_t cpu = clockNs(b->cpu_clock_.load(std::memory_order_relaxed));
         const bool wall = now >= b->wall_deadline_.load(std::memory_order_relaxed);
         const bool spent = cpu >= 0 && cpu >= b->cpu_deadline_.load(std::memory_order_relaxed);
         if (!spent && !wall) continue;
@@ -153,11 +153,13 @@ void Budget::arm(Kind kind) {
   by_backstop_ = false;
   raised_.clear();
   thread_ = pthread_self();
-  if (pthread_getcpuclockid(thread_, &cpu_clock_) != 0) cpu_clock_ = CLOCK_MONOTONIC;  // no CPU clock: wall time
+  clockid_t clock{};
+  if (pthread_getcpuclockid(thread_, &clock) != 0) clock = CLOCK_MONOTONIC;  // no CPU clock: wall time
+  cpu_clock_.store(clock, std::memory_order_relaxed);
   previous_ = t_active;
   t_active = this;
   std::atomic_signal_fence(std::memory_order_seq_cst);
-  cpu_deadline_.store(clockNs(cpu_clock_) + window_ns_, std::memory_order_relaxed);
+  cpu_deadline_.store(clockNs(clock) + window_ns_, std::memory_order_relaxed);
   const int64_t backstop = window_ns_ > INT64_MAX / kBackstopFactor ? INT64_MAX / 2 : window_ns_ * kBackstopFactor;
   wall_deadline_.store(nowNs() + backstop, std::memory_order_relaxed);
   serial_ = serial_ == INT64_MAX ? kFirstWindow : serial_ + 1;
@@ -234,8 +236,6 @@ int Budget::check(lua_State* L) {
   }
   return 0;
 }
-
-int64_t threadCpuNs() { return clockNs(CLOCK_THREAD_CPUTIME_ID); }
 
 std::string formatSeconds(double seconds) {
   char text[32];

@@ -119,7 +119,7 @@ class Budget {
   // The armed window's deadlines, written before state_ publishes the window: its thread's CPU
   // clock (cpu_clock_) in ns, and the steady clock in ns.
   std::atomic<int64_t> cpu_deadline_{0}, wall_deadline_{0};
-  clockid_t cpu_clock_{};
+  std::atomic<clockid_t> cpu_clock_{};
   bool by_backstop_ = false;  // the last closed window expired by the wall-clock backstop (owner thread)
   lua_State* L_;
   pthread_t thread_{};
@@ -155,9 +155,6 @@ void budgetedSort(lua_State* L, It first, It last, Less less) {
     Budget::check(L);
   }
 }
-
-// The CPU time the calling thread has used [ns] (CLOCK_THREAD_CPUTIME_ID).
-int64_t threadCpuNs();
 
 // "1 s", "250 ms", "1.5 s".
 std::string formatSeconds(double seconds);

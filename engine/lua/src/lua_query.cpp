@@ -15,6 +15,8 @@
 // width =, height =}, {shape = "polygon", vertices =}, {shape = "capsule", a =, b =, radius =}.
 #include "lua_query.h"
 
+#include <cmath>
+
 #include "api_names.h"
 #include "lua_args.h"
 #include "lua_body_args.h"
@@ -175,6 +177,12 @@ int explode(lua_State* L) {
   e.radius = o.positive("radius", e.radius);
   e.falloff = o.nonNegative("falloff", e.falloff);
   e.impulse = o.nonNegative("impulse", e.impulse);
+  // Distances are compared through their squares: a reach whose square overflows would miss bodies
+  // whose distance from a far position overflows too, silently.
+  if (!std::isfinite((e.radius + e.falloff) * (e.radius + e.falloff)))
+    o.fail(e.falloff > e.radius ? "falloff" : "radius",
+           "is too large: radius + falloff (" + formatNumber(e.radius + e.falloff) +
+               ") must be below about 1e154 m (its square overflows)");
   e.filter.category = o.bits("category", e.filter.category);
   e.filter.mask = o.bits("mask", e.filter.mask);
   const std::vector<BodyId> pushed = coreQuery(L, "explode", [&] { return scene.world->explode(e); });
