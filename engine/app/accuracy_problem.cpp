@@ -326,7 +326,7 @@ Problem loadProblem(const std::filesystem::path& file) {
   } catch (const lua::SceneError& e) {
     throw std::runtime_error(e.what());
   }
-  p.script = std::make_shared<ProblemScript>(readFile(file), shown);
+  p.script = std::make_shared<ProblemScript>(readFile(file, lua::ScriptLimits{}.source_bytes, "a scene file"), shown);
   lua_State* L = p.script->L();
   lua_getglobal(L, "accuracy");
   const bool has_table = lua_type(L, -1) == LUA_TTABLE;

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "rigidlab/error.h"
+#include "rigidlab/lua/bounded_file.h"
 #include "rigidlab/lua/scene_text.h"
 #include "text_file.h"
 
@@ -196,6 +197,15 @@ std::string formatTrajectory(const Trajectory& t) {
   return out;
 }
 
+size_t sampleBytesBound(const TrajectorySample& s) {
+  // "sample <step> <time>\n", then per body: step, uid, six numbers of at most 24 characters
+  // (-1.2345678901234567e-308), a space each, an escaped name (at most 4 bytes per byte: \xHH).
+  constexpr size_t kLine = 20 + 1 + 10 + 6 * (1 + 24) + 2;
+  size_t bytes = 8 + 20 + 1 + 24 + 1;
+  for (const BodySample& b : s.bodies) bytes += kLine + 4 * b.name.size();
+  return bytes;
+}
+
 Trajectory parseTrajectory(const std::string& text, const std::string& path) {
   Trajectory t;
   Reader r(text, path);
@@ -292,7 +302,12 @@ std::optional<std::string> compareTrajectories(const Trajectory& expected, const
 std::filesystem::path writeGolden(const std::filesystem::path& scene, const std::string& name,
                                   const Trajectory& trajectory) {
   const std::filesystem::path file = goldenPath(scene, name);
-  writeFile(file, formatTrajectory(trajectory));
+  const std::string text = formatTrajectory(trajectory);
+  if (text.size() > kMaxGoldenBytes)  // not reached after a run that kept to sampleBytesBound
+    throw std::runtime_error(file.string() + ": the trajectory is " + std::to_string(text.size()) +
+                             " bytes, more than the limit of " +
+                             lua::formatBytes(kMaxGoldenBytes) + " for a golden trajectory");
+  writeFile(file, text, Folders::Make);
   return file;
 }
 
@@ -304,7 +319,12 @@ std::optional<std::string> checkGolden(const std::filesystem::path& scene, const
   if (!std::filesystem::exists(file, error))
     return "golden trajectory " + file.string() + " does not exist; record it with `rigidlab test --update " +
            scene.string() + "`";
-  const std::string text = readFile(file);
+  std::string text;
+  try {
+    text = readFile(file, kMaxGoldenBytes, "a golden trajectory");
+  } catch (const std::runtime_error& e) {
+    return std::string("cannot read the golden trajectory: ") + e.what();  // too large: no diff written
+  }
   std::optional<std::string> mismatch;
   try {
     mismatch = compareTrajectories(parseTrajectory(text, file.string()), actual, tolerance);
@@ -312,8 +332,8 @@ std::optional<std::string> checkGolden(const std::filesystem::path& scene, const
     mismatch = std::string("cannot read the golden trajectory: ") + e.what();
   }
   if (!mismatch) return std::nullopt;
-  writeFile(diff_dir / "expected.txt", text);
-  writeFile(diff_dir / "actual.txt", formatTrajectory(actual));
+  writeFile(diff_dir / "expected.txt", text, Folders::Make);
+  writeFile(diff_dir / "actual.txt", formatTrajectory(actual), Folders::Make);
   const std::string dir = diff_dir.string();
   return "golden trajectory " + file.string() + ": " + *mismatch + "\nboth trajectories are in " + dir +
          "/: diff -u " + dir + "/expected.txt " + dir + "/actual.txt";

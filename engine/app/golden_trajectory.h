@@ -22,6 +22,11 @@
 
 namespace rigidlab::app {
 
+// The largest golden trajectory file read or written (docs/security.md "Files"). A run whose
+// trajectory would be larger stops with an error (sampleBytesBound), so that a scene can
+// neither make the runner hold an unbounded trajectory nor write a golden it would not read again.
+inline constexpr size_t kMaxGoldenBytes = size_t{64} << 20;
+
 struct BodySample {
   uint32_t uid = 0;
   std::string name;
@@ -46,6 +51,9 @@ struct Trajectory {
 TrajectorySample sampleWorld(const World& world, long step);
 
 std::string formatTrajectory(const Trajectory& trajectory);
+// At least the bytes formatTrajectory writes for `sample` (its lines with every number at its
+// longest, names escaped at their longest), so that a running total bounds the file before it exists.
+size_t sampleBytesBound(const TrajectorySample& sample);
 // Throws std::runtime_error("<path>:<line>: <what is wrong>").
 Trajectory parseTrajectory(const std::string& text, const std::string& path);
 
@@ -62,7 +70,7 @@ std::filesystem::path writeGolden(const std::filesystem::path& scene, const std:
                                   const Trajectory& trajectory);
 
 // A run of `scene` against its golden file `name`: nullopt if it matches; else why not — a
-// missing or unreadable file, or the first difference, in which case both trajectories are
+// missing, unreadable or too large (kMaxGoldenBytes) file, or the first difference, in which case both trajectories are
 // written into `diff_dir` (expected.txt, actual.txt) and the message names them.
 std::optional<std::string> checkGolden(const std::filesystem::path& scene, const std::string& name,
                                        const Trajectory& actual, double tolerance,

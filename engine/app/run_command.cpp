@@ -16,7 +16,7 @@
 #include "rigidlab/lua/scene.h"
 #include "rigidlab/lua/scene_text.h"
 #include "rigidlab/world_snapshot.h"
-#include "text_file.h"
+#include "state_file.h"
 
 namespace rigidlab::app {
 namespace {
@@ -42,20 +42,22 @@ Runs a scene headless: PopulateWorld, then steps (calling OnStep after each), th
   --trace-every K   ... every K steps (default 1), plus the initial and the final state
   --quiet           no summary (errors and the scene's print output still appear)
   --save-state FILE write the whole simulation state at the end of the run (before Check) to
-                    FILE: a snapshot naming the scene file and its dt (docs/testing.md
-                    "Snapshots"), e.g. to attach to a bug report
+                    FILE, whose folder must exist: a snapshot naming the scene file and its dt
+                    (docs/testing.md "Snapshots"), e.g. to attach to a bug report
   --load-state FILE load the scene the snapshot names (or SCENE, which must be the same file
                     unless --force), run PopulateWorld, put the world in the snapshot's state,
                     then continue: --time T runs until t = T (default: the scene's duration),
                     --steps N runs N more steps. The steps after a resume give the same bits as
                     the uninterrupted run; the scene's Lua variables start as after PopulateWorld,
-                    then as its LoadState sets them from what its SaveState saved
+                    then as its LoadState sets them from what its SaveState saved. A state file
+                    is at most 256 MiB
   --force           with --load-state: accept a snapshot of another scene file
 
 A run may take at most 10000000 steps (--steps, or --time / the scene's duration divided by
 dt): a longer one is refused before it starts.
 
-Exit status: 0 success, 1 scene error or failed Check, 2 usage error, 3 the run blew up: the
+Exit status: 0 success, 1 scene error (in any hook, SaveState and LoadState included, or a dt of
+the scene's that asks for too many steps) or failed Check, 2 usage error, 3 the run blew up: the
 NaN firewall froze a body or the energy became non-finite (listed as "incidents" in the summary
 and the JSON), unless the scene sets scene.expect_incidents = true.
 )";
@@ -168,9 +170,9 @@ int runCommand(const std::vector<std::string>& argv) {
   StateLabel label;
   if (load_state) {
     try {
-      loaded = deserializeSnapshot(readFile(*load_state));
+      loaded = readStateFile(*load_state);
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "run: --load-state %s: %s\n", load_state->c_str(), e.what());
+      std::fprintf(stderr, "run: --load-state: %s\n", e.what());  // the message starts with the file
       return kExitUsage;
     }
     label = parseStateLabel(loaded.label());
@@ -208,7 +210,12 @@ int runCommand(const std::vector<std::string>& argv) {
   std::optional<RunLength> length = runLength(*scene, time, steps, refused);
   if (!length) {
     std::fprintf(stderr, "run: %s\n", refused.c_str());
-    return time || steps || dt ? kExitUsage : kExitSceneError;  // the command line's or the scene's settings
+    // Whose numbers asked for too many steps: --steps and --dt are the command line's; with the
+    // scene's own dt, --time is at fault only if the scene's own length would have been allowed
+    // (a dt of 1e-12 is the scene's error whatever --time says).
+    std::string ignored;
+    const bool command_line = steps || dt || (time && runLength(*scene, std::nullopt, std::nullopt, ignored));
+    return command_line ? kExitUsage : kExitSceneError;
   }
   // Resumed: until the same end time, by the steps the uninterrupted run would still take.
   if (load_state && !steps) length->full_steps = std::max(0L, length->full_steps - world.stepCount());
@@ -237,10 +244,17 @@ int runCommand(const std::vector<std::string>& argv) {
     return kExitSceneError;
   }
   if (const auto path = args.value("save-state")) {
+    WorldSnapshot state;
     try {
-      writeFile(*path, serializeSnapshot(scene->snapshot()));
+      state = scene->snapshot();  // runs the scene's SaveState: its errors are the scene's
+    } catch (const lua::SceneError& e) {
+      std::fprintf(stderr, "%s\n", sceneErrorText(e).c_str());
+      return kExitSceneError;
+    }
+    try {
+      writeStateFile(*path, state);
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "run: --save-state %s: %s\n", path->c_str(), e.what());
+      std::fprintf(stderr, "run: --save-state: %s\n", e.what());  // the message names the file
       return kExitUsage;
     }
   }

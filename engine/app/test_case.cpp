@@ -8,6 +8,7 @@
 #include "golden_trajectory.h"
 #include "headless_run.h"
 #include "report.h"
+#include "rigidlab/lua/bounded_file.h"
 #include "rigidlab/lua/scene.h"
 
 namespace rigidlab::app {
@@ -42,13 +43,26 @@ TestOutcome runTestCase(const std::filesystem::path& path, const TestCaseOptions
   if (golden) trajectory.samples.push_back(sampleWorld(world, 0));
   RunInfo info;
   info.expect_incidents = settings.expect_incidents;
+  // The trajectory's file at its longest, kept within kMaxGoldenBytes while it is recorded.
+  size_t trajectory_bytes = golden ? sampleBytesBound(trajectory.samples.back()) : 0;
+  struct TooLong {};
+  const auto sample = [&] {
+    trajectory.samples.push_back(sampleWorld(world, info.steps));
+    trajectory_bytes += sampleBytesBound(trajectory.samples.back());
+    if (trajectory_bytes > kMaxGoldenBytes) throw TooLong{};
+  };
   try {
     stepScene(*scene, *length, info, [&] {
-      if (golden && (info.steps % settings.golden_every == 0 || info.steps == length->total()))
-        trajectory.samples.push_back(sampleWorld(world, info.steps));
+      if (golden && (info.steps % settings.golden_every == 0 || info.steps == length->total())) sample();
     });
   } catch (const lua::SceneError& e) {
     return {TestStatus::Error, sceneErrorText(e)};
+  } catch (const TooLong&) {
+    return {TestStatus::Error, "scene.golden: the golden trajectory would be larger than the limit of " +
+                                   lua::formatBytes(kMaxGoldenBytes) + " (" + std::to_string(trajectory.samples.size()) +
+                                   " samples by step " + std::to_string(info.steps) + " of " +
+                                   std::to_string(length->total()) +
+                                   "); sample less often (scene.golden_every) or fewer bodies"};
   }
 
   std::vector<std::string> failures;

@@ -25,6 +25,8 @@
 
 #include "cli.h"
 #include "commands.h"
+#include "rigidlab/lua/bounded_file.h"
+#include "rigidlab/lua/scene.h"
 #include "test_case.h"
 #include "test_report.h"
 #include "text_file.h"
@@ -142,11 +144,14 @@ std::string_view trimmed(std::string_view s) {
 }
 
 // A scene to test: a global Check is defined at the start of a line (`function Check(` or
-// `Check = function`), as scenes write it; a file of editor annotations (---@meta) is not one.
+// `Check = function`), as scenes write it; a file of editor annotations (---@meta) is not one. A
+// file larger than a scene may be is not read: it is run, so that its refusal is reported.
 bool definesCheck(const fs::path& file) {
   std::string text;
   try {
-    text = readFile(file);
+    text = readFile(file, lua::ScriptLimits{}.source_bytes, "a scene file");
+  } catch (const lua::FileTooLarge&) {
+    return true;
   } catch (const std::exception&) {
     return false;
   }
@@ -462,7 +467,7 @@ int testCommand(const std::vector<std::string>& argv) {
   std::printf("%s\n", summaryLine(counts, results.size(), seconds).c_str());
   if (o.junit) {
     try {
-      writeFile(*o.junit, junitXml(results, seconds, timestamp));
+      writeFile(*o.junit, junitXml(results, seconds, timestamp), Folders::Make);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "test: %s\n", e.what());
       return kExitSceneError;

@@ -1,5 +1,5 @@
 // libFuzzer target: a random world description (bodies of every type made of every kind of shape,
-// compounds, chains, filters, sensors, one-way platforms, joints of every type with random limits,
+// compounds, chains (long ones, sensors, their points as concave outlines), filters, sensors, one-way platforms, joints of every type with random limits,
 // motors and springs, queries and explosions between steps), read from the bytes, built through
 // the core's public API and stepped. Numbers come from a pool of nasty values (NaN, ±inf, 0, −0, denormals,
 // 1e±30, 1e308) or from ranges around sensible ones. The core must reject bad input with
@@ -148,13 +148,28 @@ void build(FuzzedDataProvider& in, World& w, std::vector<BodyId>& bodies, std::v
         w.createShape(pick(in, bodies), d);
         break;
       }
-      case 9: {  // a chain on a static body
+      case 9: {  // a chain on a static body; its points as a concave outline too
         if (bodies.empty()) break;
         World::ChainDef d;
         d.points.resize(in.ConsumeIntegralInRange(0, 12));
         for (Vec2& p : d.points) p = vec(in, -20, 20);
         d.loop = in.ConsumeBool();
-        w.createChain(pick(in, bodies), d);
+        // Sometimes long (issue 32: a chain was quadratic in its points): the points repeated, shifted.
+        const int copies = in.ConsumeIntegralInRange(0, 3) == 0 ? in.ConsumeIntegralInRange(1, 400) : 1;
+        const size_t n = d.points.size();
+        for (int c = 1; c < copies; ++c)
+          for (size_t i = 0; i < n; ++i) d.points.push_back(d.points[i] + Vec2(41.0 * c, 0.0));
+        d.sensor = in.ConsumeIntegralInRange(0, 3) == 0;
+        const BodyId body = pick(in, bodies);
+        const bool sensor_after = in.ConsumeBool(), sensor = in.ConsumeBool(), outline = in.ConsumeBool();
+        if (outline && d.points.size() >= 3 && d.points.size() <= 1024) {
+          try {
+            (void)decomposeConcave(d.points);
+          } catch (const InputError&) {
+          }
+        }
+        w.createChain(body, d);
+        if (sensor_after) w.setBodySensor(body, sensor);
         break;
       }
       case 10:

@@ -39,7 +39,12 @@ for f in "$here"/regressions/snapshot/*; do [ -f "$f" ] && snapshot_regressions+
 if [ ${#snapshot_regressions[@]} -gt 0 ]; then
   "$build/fuzz_snapshot" "${snapshot_regressions[@]}" >"$work/replay_snapshot.log" 2>&1 || { status=1; tail -40 "$work/replay_snapshot.log"; }
 fi
-echo "fuzz: replayed $(( ${#existing[@]} + ${#world_regressions[@]} + ${#snapshot_regressions[@]} )) regression inputs"
+runner_regressions=()
+for f in "$here"/regressions/runner/*; do [ -f "$f" ] && runner_regressions+=("$f"); done
+if [ ${#runner_regressions[@]} -gt 0 ]; then
+  "$build/fuzz_runner" "${runner_regressions[@]}" >"$work/replay_runner.log" 2>&1 || { status=1; tail -40 "$work/replay_runner.log"; }
+fi
+echo "fuzz: replayed $(( ${#existing[@]} + ${#world_regressions[@]} + ${#snapshot_regressions[@]} + ${#runner_regressions[@]} )) regression inputs"
 
 # 2. Fuzz each target for $seconds.
 fuzz() {  # TARGET OPTION... -- SEED_DIR...
@@ -60,7 +65,7 @@ fuzz() {  # TARGET OPTION... -- SEED_DIR...
     echo "fuzz: $target FAILED:"
     # the sanitizer's or libFuzzer's report, the engine's own abort message (RIGIDLAB_VERIFY_CACHES)
     # and the top of the stack, so that a failure seen only in CI's log can be found
-    grep -E 'ERROR|SUMMARY|Test unit written|==[0-9]+==|fuzz_world:|^rigidlab:|^ +#[0-9]+ .* in (rigidlab::|LLVMFuzzerTestOneInput)' "$log" | head -30
+    grep -E 'ERROR|SUMMARY|Test unit written|==[0-9]+==|fuzz_world:|fuzz_runner:|^rigidlab:|^ +#[0-9]+ .* in (rigidlab::|LLVMFuzzerTestOneInput)' "$log" | head -30
     for a in "$work/$target"-*; do
       [ -f "$a" ] || continue
       mkdir -p "${FUZZ_ARTIFACTS:-$root/build-fuzz-artifacts}"
@@ -72,4 +77,5 @@ fuzz() {  # TARGET OPTION... -- SEED_DIR...
 fuzz fuzz_scene -dict="$here/lua.dict" -max_len=8192 -- "$root/scripts/scenes" "$root/tests/scenes"
 fuzz fuzz_world -max_len=4096 --
 fuzz fuzz_snapshot -max_len=65536 --
+fuzz fuzz_runner -max_len=16384 --
 exit $status

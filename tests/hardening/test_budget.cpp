@@ -4,7 +4,12 @@
 // memory bombs, and the scene (or the process, for a failed load) carries on.
 #include <doctest/doctest.h>
 
+#include <lua.hpp>
+#include <pthread.h>
+#include <sched.h>
+
 #include <algorithm>
+#include <atomic>
 #include <cstdlib>
 #include <cstdio>
 #include <fstream>
@@ -12,20 +17,14 @@
 #include <thread>
 #include <vector>
 
-#include "caps.h"  // white box: patternWork, the caps
+#include "budget.h"  // white box: the Budget and its clock
+#include "caps.h"    // white box: patternWork, the caps
 #include "util.h"
 
 using namespace hardening;
 using namespace rigidlab;
 
 namespace {
-
-SceneOptions budgets(double hook_s, double force_s) {
-  SceneOptions o;
-  o.limits.hook_seconds = hook_s;
-  o.limits.force_seconds = force_s;
-  return o;
-}
 
 // The contexts a runaway can run in, each as a scene whose `code` loops and the action that runs it.
 struct Context {
@@ -138,7 +137,7 @@ TEST_CASE("budget: the default 1 s budget stops `while true do end` in PopulateW
       scene = load(c.source);
       for (int i = 0; i < c.steps; ++i) scene->step();
     });
-    MESSAGE("stopped after " << o.ms << " ms: " << o.message);
+    MESSAGE("stopped after " << o.ms << " ms of CPU time (" << o.wall_ms << " ms of wall time): " << o.message);
     CHECK(o.message == c.message);
     CHECK(o.ms >= 1000.0);
     CHECK(o.ms < 1150.0);
@@ -156,8 +155,8 @@ TEST_CASE("budget: every runaway in PopulateWorld, a force and OnStep stops just
       CAPTURE(where);
       CAPTURE(snippet);
       if (std::getenv("HARDENING_VERBOSE")) std::fprintf(stderr, "%s: %s\n", ctx.name, code);
-      // The overshoot is wall-clock time on a machine that may be shared: each runaway's is its
-      // fastest of up to three runs when one is over the limit checked below.
+      // The overshoot is CPU time (what the budget counts); on a machine that may be shared each
+      // runaway's is its fastest of up to three runs when one is over the limit checked below.
       const Outcome o = fastestWithin(100.0 + 250.0, [&] { return runIn(ctx, code, options); });
       CHECK(located(o.message));
       CHECK(o.message.ends_with(expectedTail(ctx, "100 ms")));
@@ -262,7 +261,7 @@ TEST_CASE("budget: scenes on two threads each stop at their own budget (the watc
     ta.join();
     tb.join();
   }
-  MESSAGE("thread A (100 ms) stopped after " << a.ms << " ms, thread B (300 ms) after " << b.ms << " ms");
+  MESSAGE("thread A (100 ms) stopped after " << a.ms << " ms of CPU time, thread B (300 ms) after " << b.ms << " ms");
   CHECK(a.message.ends_with("budget of 100 ms (infinite loop?)"));
   CHECK(b.message.ends_with("budget of 300 ms (infinite loop?)"));
   CHECK(a.ms >= 100.0);
@@ -522,4 +521,79 @@ TEST_CASE("memory: 100 cycles of runaway, memory bomb and good scene leave no gr
   CHECK(heap_growth < 256 * 1024);    // every Lua state and its memory freed (RSS also moves with fragmentation)
   CHECK(rss_growth < 16 * 1024);
 #endif
+}
+
+// --- the clock: the scene thread's CPU time, with a wall-clock backstop (issue 32)
+
+namespace {
+
+// Spins this thread for `ms` of its own CPU time.
+void burnCpu(double ms) {
+  const double until = threadCpuMs() + ms;
+  volatile double x = 0;
+  while (threadCpuMs() < until) x = x + 1;
+}
+
+}  // namespace
+
+TEST_CASE("budget: a window counts its thread's CPU time, not the time it waits, and the backstop its wall time") {
+  using rigidlab::lua::Budget;
+  lua_State* L = luaL_newstate();
+  {
+    Budget b(L, 0.1, 0.1);
+    Budget::Scope window(b, Budget::Kind::Hook);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));  // 3 budgets of wall time, no CPU time
+    CHECK_FALSE(b.expired());
+    burnCpu(120.0);
+    std::this_thread::sleep_for(std::chrono::milliseconds(30));  // a few watchdog ticks
+    CHECK(b.expired());
+    CHECK(b.message() == "script ran longer than its budget of 100 ms (infinite loop?)");
+  }
+  {
+    Budget b(L, 0.02, 0.02);  // backstop: 10 × 20 ms of wall time
+    Budget::Scope window(b, Budget::Kind::Hook);
+    std::this_thread::sleep_for(std::chrono::milliseconds(150));
+    CHECK_FALSE(b.expired());
+    std::this_thread::sleep_for(std::chrono::milliseconds(150));
+    CHECK(b.expired());
+    CHECK(b.message() ==
+          "script ran longer than 200 ms of wall-clock time, the backstop of a budget of 20 ms of CPU time (the "
+          "machine may be overloaded, or the process stalled)");
+  }
+  lua_close(L);
+}
+
+TEST_CASE("budget: a good scene on a loaded machine is not an infinite loop (its CPU time is what counts)") {
+  // This thread and three spinning threads share one CPU: the scene gets about a quarter of it, so
+  // 100 ms of its work takes about 400 ms of wall time, past a 250 ms budget of wall time. It was
+  // stopped as an infinite loop when budgets counted wall time.
+  const char* work = "function PopulateWorld(world)\n  local x = 0\n  for i = 1, N do x = x + i % 7 end\nend";
+  // N for about 100 ms of this machine's CPU time.
+  long n = 1000000;
+  const Outcome calibration = timed([&] { load("N = " + std::to_string(n) + "\n" + work, budgets(30, 30)); });
+  REQUIRE(calibration.message == "(no error)");
+  n = static_cast<long>(static_cast<double>(n) * 100.0 / std::max(calibration.ms, 1.0));
+
+  cpu_set_t all, one;
+  REQUIRE(pthread_getaffinity_np(pthread_self(), sizeof all, &all) == 0);
+  int cpu = 0;
+  while (!CPU_ISSET(cpu, &all)) ++cpu;
+  CPU_ZERO(&one);
+  CPU_SET(cpu, &one);
+  std::atomic<bool> stop{false};
+  std::vector<std::thread> spinners;
+  for (int i = 0; i < 3; ++i)
+    spinners.emplace_back([&] {
+      pthread_setaffinity_np(pthread_self(), sizeof one, &one);
+      volatile long x = 0;
+      while (!stop.load(std::memory_order_relaxed)) x = x + 1;
+    });
+  pthread_setaffinity_np(pthread_self(), sizeof one, &one);
+  const Outcome o = timed([&] { load("N = " + std::to_string(n) + "\n" + work, budgets(0.25, 0.25)); });
+  pthread_setaffinity_np(pthread_self(), sizeof all, &all);
+  stop = true;
+  for (std::thread& t : spinners) t.join();
+  MESSAGE("the scene's work: " << o.ms << " ms of CPU time in " << o.wall_ms << " ms of wall time (budget 250 ms)");
+  CHECK(o.message == "(no error)");
+  CHECK(o.wall_ms > 250.0);  // the load did stretch it past the budget's worth of wall time
 }

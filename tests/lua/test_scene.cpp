@@ -250,7 +250,7 @@ TEST_CASE("shape, body type and joint mistakes are one message: file:line: funct
       {"function PopulateWorld(world)\n  local b = world:add_body{}\n  b:add_shape{ shape = 'box', width = 1, height = 1, "
        "radius = 2 }\nend",
        0, "test.lua:3: add_shape: radius is not an option of a box shape (it takes width, height, offset and angle)"},
-      {"function PopulateWorld(world)\n  local b = world:add_body{}\n  b:add_shape{ shape = 'box', width = 1e308, height = 1e308, "
+      {"function PopulateWorld(world)\n  local b = world:add_body{}\n  b:add_shape{ shape = 'box', width = 1, height = 1, "
        "offset = {1.7e308, 0} }\nend",
        0, "test.lua:3: add_shape: offset (1.7e+308, 0) puts the shape out of range"},
       {"function PopulateWorld(world)\n  local b = world:add_polygon{ vertices = {{0,0},{2,0},{2,1},{1,1},{1,2},{0,2}}, "

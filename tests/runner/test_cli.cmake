@@ -196,6 +196,40 @@ expect_scene_error(bad_tolerance "golden = 'g', golden_tolerance = -1" "golden_t
 expect_scene_error(bad_typo "goldn = 'g'" "unknown option 'goldn' \\(did you mean 'golden'\\?\\)")
 expect_scene_error(bad_skip "skip = true" "skip must be a string")
 
+# Inputs over their size limits (issue 32, docs/security.md "Files"): each is refused before it is
+# read, naming the file, its size and the limit.
+set(big ${WORK}/big)
+file(MAKE_DIRECTORY ${big}/golden ${WORK}/modules)
+string(REPEAT "x" 5000000 filler)
+# A 5 MB scene that discovery finds is not read by the runner: it is run, and its refusal reported.
+file(WRITE ${big}/huge.lua "function Check(world) end\nfunction PopulateWorld(world) end\n-- ${filler}\n")
+run(1 test big/huge.lua)
+expect_match("a 5 MB scene" "${out}" "ERROR .*big/huge.lua")
+expect_match("a 5 MB scene" "${out}" "the file is 5000064 bytes, more than the limit of 4 MiB for a scene file")
+run(1 run big/huge.lua)
+expect_match("a 5 MB scene run" "${err}" "big/huge.lua: the file is 5000064 bytes, more than the limit of 4 MiB for a scene file")
+file(REMOVE ${big}/huge.lua)
+# A 5 MB module.
+file(WRITE ${WORK}/modules/heavy.lua "-- ${filler}\nreturn 1\n")
+file(WRITE ${WORK}/modules/uses_heavy.lua "local heavy = require 'heavy'\nfunction PopulateWorld(world) end\n")
+run(1 run modules/uses_heavy.lua --steps 0)
+expect_match("a 5 MB module" "${err}" "uses_heavy.lua:1: require: modules/heavy.lua: the file is 5000013 bytes, more than the limit of 4 MiB for a module file")
+# A 400 MB golden trajectory (a hole): refused unread; it took rigidlab test past 2 GB in 13 s.
+file(WRITE ${big}/wide.lua "scene = { golden = 'wide', duration = 0.1 }\nfunction PopulateWorld(world) world:add_circle{ radius = 1 } end\nfunction Check(world) end\n")
+file(WRITE ${big}/golden/wide.txt "")
+execute_process(COMMAND truncate -s 400M ${big}/golden/wide.txt RESULT_VARIABLE truncated)
+expect_equal("truncate" "${truncated}" "0")
+run(1 test big)
+expect_match("a 400 MB golden" "${out}" "cannot read the golden trajectory: big/golden/wide.txt: the file is 419430400 bytes, more than the limit of 64 MiB for a golden trajectory")
+# A run whose trajectory would pass the limit stops recording it (20 000 bodies sampled every step).
+file(WRITE ${big}/wide.lua "scene = { golden = 'wide', golden_every = 1, duration = 0.5 }\nfunction PopulateWorld(world)\n  for i = 1, 20000 do world:add_box{ width = 0.5, height = 0.5, position = {i, 0}, static = true } end\nend\nfunction Check(world) end\n")
+file(REMOVE ${big}/golden/wide.txt)
+run(1 test big --update)
+expect_match("a trajectory past the limit" "${out}" "ERROR .*big/wide.lua.*scene.golden: the golden trajectory would be larger than the limit of 64 MiB \\([0-9]+ samples by step [0-9]+ of 30\\); sample less often")
+if(EXISTS ${big}/golden/wide.txt)
+  message(FATAL_ERROR "a golden trajectory past the limit was written")
+endif()
+
 # Usage errors.
 run(0 test --help)
 expect_match("help" "${out}" "--shard K/N")

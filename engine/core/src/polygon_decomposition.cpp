@@ -60,6 +60,11 @@ std::vector<std::vector<Vec2>> decomposeConcave(std::span<const Vec2> outline) {
     lo = lo.cwiseMin(outline[i]);
     hi = hi.cwiseMax(outline[i]);
   }
+  // The squares of the coordinates must not overflow (makePolygon's rule, shape.cpp).
+  for (size_t i = 0; i < n0; ++i) requireNearOrigin("vertices[" + std::to_string(i + 1) + "]", outline[i]);
+  if (!isFinite(hi - lo) || !std::isfinite((hi - lo).squaredNorm()))
+    throw InputError("vertices", "vertices span too far: the size of the outline from " + formatVec(lo) + " to " +
+                                     formatVec(hi) + " overflows");
   const double tol = 1e-9 * (hi - lo).norm();
 
   // 1. Clean.

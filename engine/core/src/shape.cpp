@@ -21,14 +21,34 @@ double computeExtent(const Shape& shape) {
   return r + shape.radius;  // capsules: the rounding; 0 for the others
 }
 
+// Shapes are computed with the squares of their coordinates (lengths, normals, extents) and their
+// moments of inertia with fourth powers: a size at which those overflow is refused, naming the
+// input, rather than left to become ∞ or a zero normal (or refused later in other words).
+bool squareFinite(const Vec2& v) { return isFinite(v) && std::isfinite(v.squaredNorm()); }
+
+// The area and moment of inertia at density 1 must be finite: `field` and `value` are the size that
+// made them overflow.
+void requireFiniteMass(const Shape& s, const std::string& field, const std::string& value) {
+  const MassData m = computeMass(s, 1.0);
+  if (!std::isfinite(m.area) || !std::isfinite(m.inertia))
+    throw InputError(field, field + " " + value + " makes the " + shapeTypeName(s.type) +
+                                " too large: its area or moment of inertia overflows (area " + formatNumber(m.area) +
+                                " m², moment of inertia " + formatNumber(m.inertia) + " m⁴)");
+}
+
 // A two-cornered shape (capsule, segment, chain segment): end points and the two side normals.
 Shape makeTwoPoint(ShapeType type, const Vec2& a, const Vec2& b, double radius) {
   requireFinite("a", a);
   requireFinite("b", b);
   const Vec2 d = b - a;
+  if (!squareFinite(d))
+    throw InputError("b", "b is too far from a: the length from a = " + formatVec(a) + " to b = " + formatVec(b) +
+                              " overflows");
+  requireNearOrigin("a", a);
+  requireNearOrigin("b", b);
   // The normal of a → b must be computable: a and b further apart than round-off of their size.
   const double size = std::max({a.norm(), b.norm(), 1e-300});
-  if (!(d.norm() > 1e-9 * size) || !isFinite(d))
+  if (!(d.norm() > 1e-9 * size))
     throw InputError("b", "b must differ from a, got a = " + formatVec(a) + " and b = " + formatVec(b));
   Shape s;
   s.type = type;
@@ -38,6 +58,7 @@ Shape makeTwoPoint(ShapeType type, const Vec2& a, const Vec2& b, double radius) 
   s.normals = {n, -n};
   s.extent = computeExtent(s);
   s.inradius = radius;
+  if (!std::isfinite(s.extent)) throw InputError("radius", "radius " + formatNumber(radius) + " puts the shape out of range");
   return s;
 }
 
@@ -56,13 +77,23 @@ void computeNormals(Shape& s) {
 
 }  // namespace
 
+void requireNearOrigin(const std::string& field, const Vec2& p) {
+  if (!squareFinite(p))
+    throw InputError(field, field + " " + formatVec(p) +
+                                " is too far from the body's origin: its distance overflows (a shape's points "
+                                "must lie within about 1e154 m of it)");
+}
+
 Shape makeCircle(double radius, const Vec2& center) {
   Shape s;
   s.type = ShapeType::Circle;
   s.radius = requirePositive("radius", radius);
   s.center = requireFinite("center", center);
+  requireNearOrigin("center", s.center);
   s.extent = computeExtent(s);
   s.inradius = s.radius;
+  requireFiniteMass(s, "radius", formatNumber(radius));
+  if (!std::isfinite(s.extent)) throw InputError("center", "center " + formatVec(center) + " puts the circle out of range");
   return s;
 }
 
@@ -73,6 +104,7 @@ Shape makePolygon(std::span<const Vec2> points) {
     throw InputError("vertices", "vertices has " + std::to_string(n) + " points, at most " +
                                      std::to_string(kMaxPolygonVertices) + " are allowed");
   for (int i = 0; i < n; ++i) requireFinite(vertexField(i), points[i]);
+  for (int i = 0; i < n; ++i) requireNearOrigin(vertexField(i), points[i]);
 
   // Tolerances scale with the polygon so that 1 cm and 1 km shapes are treated alike.
   Vec2 lo = points[0], hi = points[0];
@@ -80,6 +112,9 @@ Shape makePolygon(std::span<const Vec2> points) {
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
+  if (!squareFinite(hi - lo))
+    throw InputError("vertices", "vertices span too far: the size of the outline from " + formatVec(lo) + " to " +
+                                     formatVec(hi) + " overflows");
   const double extent = (hi - lo).norm();
   const double tol = 1e-9 * extent;
 
@@ -145,12 +180,15 @@ Shape makePolygon(std::span<const Vec2> points) {
   Shape s;
   s.type = ShapeType::Polygon;
   s.vertices = std::move(v);
+  requireFiniteMass(s, "vertices", "spanning " + formatVec(lo) + " to " + formatVec(hi));
   computeNormals(s);
   return s;
 }
 
 Shape makeCapsule(const Vec2& a, const Vec2& b, double radius) {
-  return makeTwoPoint(ShapeType::Capsule, a, b, requirePositive("radius", radius));
+  Shape s = makeTwoPoint(ShapeType::Capsule, a, b, requirePositive("radius", radius));
+  requireFiniteMass(s, "radius", formatNumber(radius));
+  return s;
 }
 
 Shape makeSegment(const Vec2& a, const Vec2& b) { return makeTwoPoint(ShapeType::Segment, a, b, 0.0); }
@@ -171,9 +209,10 @@ Shape transformShape(const Shape& shape, const Vec2& offset, double angle) {
   for (Vec2& n : s.normals) n = xf.q.apply(n);
   s.ghost1 = xf.apply(shape.ghost1);
   s.ghost2 = xf.apply(shape.ghost2);
-  if (!isFinite(s.center) || !std::all_of(s.vertices.begin(), s.vertices.end(), [](const Vec2& v) { return isFinite(v); }))
-    throw InputError("offset", "offset " + formatVec(offset) + " puts the shape out of range");
   s.extent = computeExtent(s);
+  if (!squareFinite(s.center) || !std::all_of(s.vertices.begin(), s.vertices.end(), squareFinite) ||
+      !std::isfinite(s.extent) || !std::isfinite(computeMass(s, 1.0).inertia))
+    throw InputError("offset", "offset " + formatVec(offset) + " puts the shape out of range");
   return s;
 }
 
@@ -211,6 +250,12 @@ Shape makeBox(double width, double height, const Vec2& center, double angle) {
   s.type = ShapeType::Polygon;
   for (const Vec2& corner : {Vec2(-hx, -hy), Vec2(hx, -hy), Vec2(hx, hy), Vec2(-hx, hy)})
     s.vertices.push_back(center + q.apply(corner));
+  // The longer side is the one that made it too large.
+  const std::string side = width >= height ? "width" : "height";
+  const double size = std::max(width, height);
+  if (!std::all_of(s.vertices.begin(), s.vertices.end(), squareFinite))
+    throw InputError(side, side + " " + formatNumber(size) + " makes the box too large: its corners' distances overflow");
+  requireFiniteMass(s, side, formatNumber(size));
   computeNormals(s);
   return s;
 }

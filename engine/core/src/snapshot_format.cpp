@@ -14,6 +14,7 @@
 // never undefined behaviour. Written is what a step, an edit or a query reads from the state kept
 // between steps (docs/testing.md "Snapshots"); the step's scratch (solver copies, per-step buffers) is not:
 // steps size and fill it themselves.
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -169,8 +170,16 @@ template <typename A, typename T>
 void io(A& a, std::vector<T>& v) {
   size_t n = v.size();
   a.count(n, "a list's length");
-  if constexpr (A::kReading) v.resize(n);
-  for (T& x : v) io(a, x);
+  if constexpr (A::kReading) {
+    // Grown as the elements are read, not resized to the count first: a count that lies (each
+    // element is larger in memory than its smallest encoding) costs only what the file holds.
+    v.clear();
+    v.reserve(std::min(n, size_t{1024}));
+    for (size_t i = 0; i < n; ++i) io(a, v.emplace_back());
+    v.shrink_to_fit();
+  } else {
+    for (T& x : v) io(a, x);
+  }
 }
 template <typename A, typename T>
 void io(A& a, std::optional<T>& o) {
@@ -876,18 +885,41 @@ std::string serializeSnapshot(const WorldSnapshot& snapshot) {
   return std::move(file.out);
 }
 
-WorldSnapshot deserializeSnapshot(std::string_view bytes) {
+namespace {
+
+struct Header {
+  uint32_t version = 0;
+  uint64_t length = 0;  // of the payload
+};
+constexpr size_t kPayloadStart = kMagicBytes + 12;
+static_assert(kSnapshotHeaderBytes == kPayloadStart);
+
+Header readHeader(std::string_view bytes) {
   if (bytes.size() < kMagicBytes || bytes.substr(0, kMagicBytes) != std::string_view(kMagic, kMagicBytes))
     throw SnapshotError("snapshot: not a rigidlab snapshot (no \"RIGIDLAB-SNAPSHOT\" header)");
   Reader head(bytes.substr(kMagicBytes), kMagicBytes);
-  uint32_t version = 0;
-  uint64_t length = 0;
-  head(version, "the version");
-  if (version < kOldestVersion || version > kVersion)
-    throw SnapshotError("snapshot: version " + std::to_string(version) + ", this program reads versions " +
+  Header h;
+  head(h.version, "the version");
+  if (h.version < kOldestVersion || h.version > kVersion)
+    throw SnapshotError("snapshot: version " + std::to_string(h.version) + ", this program reads versions " +
                         std::to_string(kOldestVersion) + " to " + std::to_string(kVersion));
-  head(length, "the length");
-  const size_t start = kMagicBytes + 12;
+  head(h.length, "the length");
+  return h;
+}
+
+}  // namespace
+
+uint64_t snapshotFileBytes(std::string_view header) {
+  const Header h = readHeader(header.substr(0, std::min(header.size(), kSnapshotHeaderBytes)));
+  // payload + checksum after the header, saturating: a hostile length must not wrap around
+  return h.length > UINT64_MAX - kPayloadStart - 8 ? UINT64_MAX : kPayloadStart + h.length + 8;
+}
+
+WorldSnapshot deserializeSnapshot(std::string_view bytes) {
+  const Header header = readHeader(bytes);
+  const uint32_t version = header.version;
+  const uint64_t length = header.length;
+  const size_t start = kPayloadStart;
   if (bytes.size() < start || bytes.size() - start < 8 || length != bytes.size() - start - 8)
     throw SnapshotError("snapshot: truncated or extended: the header says " + std::to_string(length) +
                         " bytes of state, the file has " +

@@ -391,7 +391,9 @@ struct WorldImpl {
   // `field`, `value`: what the densities came from, for the error message.
   void updateMass(Body& b, const char* field, double value);
   // Validates and attaches a shape to the body in `body` (world_shape.cpp); returns its slot.
-  uint32_t attachShape(uint32_t body, const ShapeDef& def, const char* field, double value);
+  // `update_mass` false: the caller calls updateMass once after attaching several (a chain: one
+  // call per segment would make a chain of n points cost n²).
+  uint32_t attachShape(uint32_t body, const ShapeDef& def, const char* field, double value, bool update_mass = true);
   void releaseShape(uint32_t index);  // frees the slot (the caller fixes the body's list)
   static Shape validatedShape(const Shape& s);
   // "mass and moment of inertia must be finite with finite inverses, got ..." naming `field`.

@@ -1,6 +1,7 @@
 // Joints in the world: creation (validation, frames in body coordinates), removal, readings.
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "rigidlab/error.h"
 #include "rigidlab/world.h"
@@ -159,14 +160,26 @@ JointId World::createJoint(const JointDef& in) {
     const Transform xa = transformOf(w, j.a), xb = transformOf(w, j.b);
     j.local_a = xa.applyInverse(d.anchor_a);
     j.local_b = xb.applyInverse(d.anchor_b);
+    // The solver squares lever arms and lengths: an anchor so far from its body that they overflow
+    // is refused, naming it (not left to freeze both bodies in the first step).
+    for (const auto& [field, local, anchor, side] : {std::tuple{"anchor_a", &j.local_a, &d.anchor_a, "a"},
+                                                     std::tuple{"anchor_b", &j.local_b, &d.anchor_b, "b"}})
+      if (!isFinite(*local) || !std::isfinite(local->squaredNorm()))
+        throw InputError(field, std::string(field) + " " + formatVec(*anchor) + " is too far from body " + side +
+                                    ": the lever arm overflows");
     j.reference_angle = angleOf(w, j.b) - angleOf(w, j.a);
     if (d.reference_angle && d.type != JointType::Motor) j.reference_angle = requireFinite("reference_angle", *d.reference_angle);
     if (d.type == JointType::Prismatic || d.type == JointType::Wheel) {
       requireFinite("axis", d.axis);
       if (!(d.axis.norm() > 0.0)) throw InputError("axis", "axis must not be zero, got " + formatVec(d.axis));
-      j.local_axis = xa.q.applyInverse(d.axis.normalized());
+      // A direction whose length overflows is scaled first (its square would make it zero).
+      const Vec2 axis = std::isfinite(d.axis.squaredNorm()) ? d.axis : Vec2(d.axis / d.axis.cwiseAbs().maxCoeff());
+      j.local_axis = xa.q.applyInverse(axis.normalized());
     }
     if (d.type == JointType::Distance) {
+      if (d.length < 0.0 && !std::isfinite((d.anchor_b - d.anchor_a).squaredNorm()))
+        throw InputError("anchor_b", "anchor_b " + formatVec(d.anchor_b) + " is too far from anchor_a " +
+                                         formatVec(d.anchor_a) + ": the length between them overflows");
       if (d.length < 0.0) d.length = (d.anchor_b - d.anchor_a).norm();
       requireFinite("length", d.length);
       j.length = d.length;

@@ -114,10 +114,17 @@ std::vector<ShapeId> World::queryBox(const Aabb& box, const QueryFilter& filter)
   if (box.lower.x() > box.upper.x() || box.lower.y() > box.upper.y())
     throw InputError("lower", "lower " + formatVec(box.lower) + " must not exceed upper " + formatVec(box.upper));
   w.syncTree();
-  // The box as a polygon (or a segment or point when it is flat), for the exact test.
+  // The box as a polygon (or a segment or point when it is flat), for the exact test. A box too
+  // large to be a shape (its moment of inertia overflows, about 1e77 m) gets the bounds test alone:
+  // it differs from the exact one only for shapes across its far edges.
   const Vec2 size = box.upper - box.lower;
-  const Shape query = size.x() > 0.0 && size.y() > 0.0 ? makeBox(size.x(), size.y(), 0.5 * (box.lower + box.upper))
-                                                       : Shape{};
+  Shape query;
+  if (size.x() > 0.0 && size.y() > 0.0) {
+    try {
+      query = makeBox(size.x(), size.y(), 0.5 * (box.lower + box.upper));
+    } catch (const InputError&) {
+    }
+  }
   std::vector<ShapeId> out;
   w.tree.queryContained(box, [&](uint32_t s, bool contained) {
     if (!accepts(w, s, filter)) return true;
@@ -208,6 +215,7 @@ std::vector<BodyId> World::explode(const ExplosionDef& def) {
   });
   std::sort(shapes.begin(), shapes.end());  // deterministic: slot order, whatever the tree
   std::vector<BodyId> pushed;
+  std::vector<char> listed(w.bodies.size(), 0);  // per slot: in `pushed` (a search of it would cost n² for n bodies)
   for (uint32_t s : shapes) {
     Body& b = w.bodies[w.shapes[s].body.index];
     Vec2 on_shape, on_centre;
@@ -221,7 +229,10 @@ std::vector<BodyId> World::explode(const ExplosionDef& def) {
     const double magnitude = def.impulse * scale * projectedWidth(w.shapes[s].geometry, b.xf, direction);
     if (magnitude == 0.0) continue;
     applyImpulse(b.id, magnitude * direction, on_shape);
-    if (std::find(pushed.begin(), pushed.end(), b.id) == pushed.end()) pushed.push_back(b.id);
+    if (!listed[b.id.index]) {
+      listed[b.id.index] = 1;
+      pushed.push_back(b.id);
+    }
   }
   return pushed;
 }

@@ -109,7 +109,7 @@ InputError WorldImpl::massError(const char* field, double mass, double inertia, 
                                " and the shape's size)");
 }
 
-uint32_t WorldImpl::attachShape(uint32_t body, const ShapeDef& def, const char* field, double value) {
+uint32_t WorldImpl::attachShape(uint32_t body, const ShapeDef& def, const char* field, double value, bool update_mass) {
   Body& b = bodies[body];
   BodyShape s;
   s.geometry = validatedShape(def.shape);
@@ -149,6 +149,7 @@ uint32_t WorldImpl::attachShape(uint32_t body, const ShapeDef& def, const char* 
   ++layout_version;
   shapesEdited();
   ++static_version;
+  if (!update_mass) return index;
   try {
     updateMass(b, field, value);
   } catch (...) {
@@ -257,6 +258,22 @@ void World::setShapeSensor(ShapeId id, bool sensor) {
   impl_->wakeIsland(s.body.index);
 }
 
+void World::setBodySensor(BodyId id, bool sensor) {
+  WorldImpl& w = *impl_;
+  w.requireUnlocked("setBodySensor");
+  Body& b = w.get(id);
+  for (ShapeId s : b.shapes) {
+    BodyShape& shape = w.shapes[s.index];
+    w.countShape(shape, -1);
+    shape.sensor = sensor;
+    w.countShape(shape, +1);
+  }
+  w.shapesEdited();
+  ++w.layout_version;  // the queries' copy of the flag (WorldImpl::tree_shapes)
+  w.updateMass(b, "density", b.density);  // the CCD bounds change
+  w.wakeIsland(id.index);
+}
+
 void World::setShapeEvents(ShapeId id, bool contact_events, bool hit_events, double hit_speed) {
   impl_->requireUnlocked("setShapeEvents");
   BodyShape& s = impl_->get(id);
@@ -299,13 +316,20 @@ std::vector<ShapeId> World::createChain(BodyId body, const ChainDef& def) {
   if (n < (def.loop ? 3u : 2u))
     throw InputError("points", std::string(def.loop ? "a loop" : "a chain") + " needs at least " + (def.loop ? "3" : "2") +
                                    " points, got " + std::to_string(n));
-  for (size_t i = 0; i < n; ++i) requireFinite("points[" + std::to_string(i + 1) + "]", def.points[i]);
+  const auto field = [](size_t i) { return "points[" + std::to_string(i + 1) + "]"; };
+  for (size_t i = 0; i < n; ++i) {
+    requireFinite(field(i), def.points[i]);
+    requireNearOrigin(field(i), def.points[i]);
+  }
   for (size_t i = 0; i + 1 < n || (def.loop && i < n); ++i) {
     const Vec2 &p = def.points[i], &q = def.points[(i + 1) % n];
+    const size_t k = (i + 1) % n;
+    if (!isFinite(q - p) || !std::isfinite((q - p).squaredNorm()))
+      throw InputError(field(k), field(k) + " " + formatVec(q) + " is too far from the point before it, " + formatVec(p) +
+                                     ": the segment's length overflows");
     const double size = std::max({p.norm(), q.norm(), 1e-300});
     if (!((q - p).norm() > 1e-9 * size))
-      throw InputError("points[" + std::to_string((i + 1) % n + 1) + "]",
-                       "points[" + std::to_string((i + 1) % n + 1) + "] repeats the point before it, " + formatVec(q));
+      throw InputError(field(k), field(k) + " repeats the point before it, " + formatVec(q));
   }
   const Material material = WorldImpl::validatedMaterial(def.material.restitution, def.material.friction, def.material.static_friction);
   // Ghost vertices: the neighbours of each segment. An open chain's end segments have none at their
@@ -313,19 +337,30 @@ std::vector<ShapeId> World::createChain(BodyId body, const ChainDef& def) {
   const size_t segments = def.loop ? n : n - 1;
   const uint32_t chain = ++w.chains;
   std::vector<ShapeId> ids;
-  for (size_t i = 0; i < segments; ++i) {
-    const Vec2& a = def.points[i];
-    const Vec2& bb = def.points[(i + 1) % n];
-    const Vec2 g1 = def.loop ? def.points[(i + n - 1) % n] : (i == 0 ? a : def.points[i - 1]);
-    const Vec2 g2 = def.loop ? def.points[(i + 2) % n] : (i + 2 < n ? def.points[i + 2] : bb);
-    ShapeDef sd;
-    sd.shape = makeChainSegment(g1, a, bb, g2);
-    sd.material = material;
-    sd.filter = def.filter;
-    const uint32_t index = w.attachShape(body.index, sd, "density", 1.0);
-    w.shapes[index].chain = chain;
-    ids.push_back(w.shapes[index].id);
+  ids.reserve(segments);
+  Body& owner = w.bodies[body.index];
+  // The mass once at the end (a static body's chain adds no area, so this cannot fail): each
+  // segment's own update would cost the segments before it, n² for the chain.
+  try {
+    for (size_t i = 0; i < segments; ++i) {
+      const Vec2& a = def.points[i];
+      const Vec2& bb = def.points[(i + 1) % n];
+      const Vec2 g1 = def.loop ? def.points[(i + n - 1) % n] : (i == 0 ? a : def.points[i - 1]);
+      const Vec2 g2 = def.loop ? def.points[(i + 2) % n] : (i + 2 < n ? def.points[i + 2] : bb);
+      ShapeDef sd;
+      sd.shape = makeChainSegment(g1, a, bb, g2);
+      sd.material = material;
+      sd.filter = def.filter;
+      sd.sensor = def.sensor;
+      const uint32_t index = w.attachShape(body.index, sd, "density", 1.0, false);
+      w.shapes[index].chain = chain;
+      ids.push_back(w.shapes[index].id);
+    }
+  } catch (...) {
+    w.updateMass(owner, "density", 1.0);
+    throw;
   }
+  w.updateMass(owner, "density", 1.0);
   return ids;
 }
 

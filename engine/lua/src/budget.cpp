@@ -27,6 +27,13 @@ int64_t nowNs() {
       .count();
 }
 
+// A clock's reading in ns, or -1 if it cannot be read (the thread of a CPU clock has ended).
+int64_t clockNs(clockid_t clock) {
+  timespec t{};
+  if (clock_gettime(clock, &t) != 0) return -1;
+  return static_cast<int64_t>(t.tv_sec) * 1000000000 + t.tv_nsec;
+}
+
 // The budget armed on this thread (innermost). Read by the signal handler: static TLS, set before
 // any signal can target this thread.
 thread_local Budget* t_active = nullptr;
@@ -41,7 +48,7 @@ void budgetSignal(int sig) {
   const int saved_errno = errno;
   Budget* b = t_active;
   const int64_t s = b ? b->state_.load(std::memory_order_acquire) : 0;
-  if (b && (s == Budget::kSignalling || s == Budget::kExpired)) {
+  if (b && s > 0 && s < Budget::kFirstWindow) {
     lua_sethook(b->L_, budgetHook, LUA_MASKCOUNT, 1);
   } else if (g_previous.sa_handler != SIG_IGN && g_previous.sa_handler != SIG_DFL && g_previous.sa_handler) {
     g_previous.sa_handler(sig);  // not ours: the host's handler
@@ -102,11 +109,18 @@ class Watchdog {
       const int64_t now = nowNs();
       for (Budget* b : budgets_) {
         int64_t s = b->state_.load(std::memory_order_acquire);
-        if (s > Budget::kExpired && now >= s &&
-            b->state_.compare_exchange_strong(s, Budget::kSignalling, std::memory_order_acq_rel)) {
-          // The owning thread waits in disarm() while kSignalling, so it is alive here.
+        if (s < Budget::kFirstWindow) continue;
+        // Read after the window's serial (acquire): its deadlines. If the window changes meanwhile,
+        // the compare-and-swap below fails.
+        const int64_t cpu = clockNs(b->cpu_clock_.load(std::memory_order_relaxed));
+        const bool wall = now >= b->wall_deadline_.load(std::memory_order_relaxed);
+        const bool spent = cpu >= 0 && cpu >= b->cpu_deadline_.load(std::memory_order_relaxed);
+        if (!spent && !wall) continue;
+        const int64_t signalling = spent ? Budget::kSignalling : Budget::kSignallingWall;
+        if (b->state_.compare_exchange_strong(s, signalling, std::memory_order_acq_rel)) {
+          // The owning thread waits in disarm() while signalling, so it is alive here.
           pthread_kill(b->thread_, kBudgetSignal);
-          b->state_.store(Budget::kExpired, std::memory_order_release);
+          b->state_.store(spent ? Budget::kExpired : Budget::kExpiredWall, std::memory_order_release);
         }
       }
       lock.unlock();
@@ -136,28 +150,35 @@ void Budget::arm(Kind kind) {
   window_kind_ = kind;
   window_per_step_ = lazy_;
   window_ns_ = kind == Kind::Hook ? hook_ns_ : force_ns_;
+  by_backstop_ = false;
   raised_.clear();
   thread_ = pthread_self();
+  clockid_t clock{};
+  if (pthread_getcpuclockid(thread_, &clock) != 0) clock = CLOCK_MONOTONIC;  // no CPU clock: wall time
+  cpu_clock_.store(clock, std::memory_order_relaxed);
   previous_ = t_active;
   t_active = this;
   std::atomic_signal_fence(std::memory_order_seq_cst);
-  int64_t deadline = nowNs() + window_ns_;
-  if (deadline <= kExpired) deadline = kExpired + 1;
-  state_.store(deadline, std::memory_order_release);
+  cpu_deadline_.store(clockNs(clock) + window_ns_, std::memory_order_relaxed);
+  const int64_t backstop = window_ns_ > INT64_MAX / kBackstopFactor ? INT64_MAX / 2 : window_ns_ * kBackstopFactor;
+  wall_deadline_.store(nowNs() + backstop, std::memory_order_relaxed);
+  serial_ = serial_ == INT64_MAX ? kFirstWindow : serial_ + 1;
+  state_.store(serial_, std::memory_order_release);
   armed_ = true;
 }
 
 void Budget::disarm() {
   if (!armed_) return;
   int64_t s = state_.exchange(0, std::memory_order_acq_rel);
-  while (s == kSignalling) {  // the watchdog is between its exchange and pthread_kill: let it finish
+  while (signalling(s)) {  // the watchdog is between its exchange and pthread_kill: let it finish
     std::this_thread::yield();
     s = state_.exchange(0, std::memory_order_acq_rel);
   }
   t_active = previous_;
   std::atomic_signal_fence(std::memory_order_seq_cst);
   // The hook (if the window expired) goes; one that a late signal installs removes itself.
-  if (s == kExpired) lua_sethook(L_, nullptr, 0, 0);
+  if (s == kExpired || s == kExpiredWall) lua_sethook(L_, nullptr, 0, 0);
+  by_backstop_ = s == kExpiredWall;  // for message() after the window
   armed_ = false;
 }
 
@@ -176,11 +197,18 @@ Budget::Scope::~Scope() {
 
 bool Budget::expired() const {
   const int64_t s = state_.load(std::memory_order_acquire);
-  return s == kExpired || s == kSignalling;
+  return s > 0 && s < kFirstWindow;
 }
 
 std::string Budget::message() const {
   const std::string limit = formatSeconds(window_ns_ * 1e-9);
+  const int64_t s = state_.load(std::memory_order_acquire);
+  if (s == kSignallingWall || s == kExpiredWall || by_backstop_) {
+    const std::string subject = window_kind_ == Kind::Force ? "Lua forces" : "script";
+    return subject + " ran longer than " + formatSeconds(window_ns_ * 1e-9 * kBackstopFactor) +
+           " of wall-clock time, the backstop of a budget of " + limit +
+           " of CPU time (the machine may be overloaded, or the process stalled)";
+  }
   if (window_kind_ == Kind::Force)
     return "Lua forces ran longer than their budget of " + limit + (window_per_step_ ? " per step" : " per call") +
            " (infinite loop?)";

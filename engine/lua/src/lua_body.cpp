@@ -15,6 +15,7 @@
 
 #include "api_names.h"
 #include "bindings.h"
+#include "budget.h"
 #include "lua_args.h"
 #include "lua_body_args.h"
 #include "lua_contact.h"
@@ -257,8 +258,15 @@ void bodyNewIndex(lua_State* L, const LuaBody& self, const sol::stack_object& ke
       w.setName(id, std::move(name));
     } else {  // a property of every shape
       if (b.shapes.empty()) fail(L, function, "the body has no shapes (add one with body:add_shape{...})");
-      const std::vector<ShapeId> shapes = b.shapes;
-      for (const ShapeId s : shapes) setShapeProperty(L, w, s, function, k, value);
+      if (k == "sensor") {
+        w.setBodySensor(id, checkBool(L, function, "", value));  // one mass update, not one per shape
+      } else {
+        const std::vector<ShapeId> shapes = b.shapes;
+        for (const ShapeId s : shapes) {
+          setShapeProperty(L, w, s, function, k, value);
+          Budget::check(L);  // a body of many shapes: stopped within one shape of its budget
+        }
+      }
     }
   } catch (const InputError& e) {
     failCore(L, function, e);  // the core names its own field ("a body with a segment ... cannot be dynamic")

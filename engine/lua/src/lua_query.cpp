@@ -15,6 +15,8 @@
 // width =, height =}, {shape = "polygon", vertices =}, {shape = "capsule", a =, b =, radius =}.
 #include "lua_query.h"
 
+#include <cmath>
+
 #include "api_names.h"
 #include "lua_args.h"
 #include "lua_body_args.h"
@@ -34,6 +36,26 @@ QueryFilter readQueryFilter(const Options& o) {
   f.mask = o.bits("mask", f.mask);
   f.sensors = o.boolean("sensors", f.sensors);
   return f;
+}
+
+// Two points of a query whose difference overflows (a ray from -1.7e308 to 1.7e308): refused naming
+// the option, rather than a C++ name ("width must be > 0, got inf") or a silent miss.
+void requireSpan(const Options& o, std::string_view key, std::string_view other, const Vec2& from, const Vec2& to,
+                 std::string_view what) {
+  const Vec2 d = to - from;
+  if (!isFinite(d) || !std::isfinite(d.squaredNorm()))
+    o.fail(key, "is too far from " + std::string(other) + ": " + std::string(what) + " overflows, got " +
+                    std::string(other) + " " + formatVec(from) + " and " + std::string(key) + " " + formatVec(to));
+}
+
+// Runs a query of the core: its refusals are errors of `function`, naming the option.
+template <typename F>
+auto coreQuery(lua_State* L, std::string_view function, F&& query) {
+  try {
+    return query();
+  } catch (const InputError& e) {
+    failCore(L, function, e);
+  }
 }
 
 // The options of `function`: its own and the filter's.
@@ -86,14 +108,18 @@ int rayCast(lua_State* L) {
   Scene::Impl& scene = editedWorld(L, "ray_cast");
   const Options o = queryOptions(L, "ray_cast", kRayCastOptions);
   const Vec2 from = o.vec("from"), to = o.vec("to");
-  return pushOptionalHit(L, scene, scene.world->rayCast(from, to, readQueryFilter(o)));
+  requireSpan(o, "to", "from", from, to, "the ray's length");
+  const QueryFilter filter = readQueryFilter(o);
+  return pushOptionalHit(L, scene, coreQuery(L, "ray_cast", [&] { return scene.world->rayCast(from, to, filter); }));
 }
 
 int rayCastAll(lua_State* L) {
   Scene::Impl& scene = editedWorld(L, "ray_cast_all");
   const Options o = queryOptions(L, "ray_cast_all", kRayCastOptions);
   const Vec2 from = o.vec("from"), to = o.vec("to");
-  const std::vector<RayHit> hits = scene.world->rayCastAll(from, to, readQueryFilter(o));
+  requireSpan(o, "to", "from", from, to, "the ray's length");
+  const QueryFilter filter = readQueryFilter(o);
+  const std::vector<RayHit> hits = coreQuery(L, "ray_cast_all", [&] { return scene.world->rayCastAll(from, to, filter); });
   lua_createtable(L, static_cast<int>(hits.size()), 0);
   for (size_t i = 0; i < hits.size(); ++i) {
     pushHit(L, scene, hits[i]);
@@ -109,13 +135,17 @@ int queryBox(lua_State* L) {
   if (box.upper.x() < box.lower.x() || box.upper.y() < box.lower.y())
     o.fail("upper", "must be above and right of lower (upper >= lower in x and y), got lower " +
                         formatVec(box.lower) + " and upper " + formatVec(box.upper));
-  return pushShapes(L, scene, scene.world->queryBox(box, readQueryFilter(o)));
+  requireSpan(o, "upper", "lower", box.lower, box.upper, "the box's size");
+  const QueryFilter filter = readQueryFilter(o);
+  return pushShapes(L, scene, coreQuery(L, "query_box", [&] { return scene.world->queryBox(box, filter); }));
 }
 
 int queryPoint(lua_State* L) {
   Scene::Impl& scene = editedWorld(L, "query_point");
   const Options o = queryOptions(L, "query_point", kQueryPointOptions);
-  return pushShapes(L, scene, scene.world->queryPoint(o.vec("point"), readQueryFilter(o)));
+  const Vec2 point = o.vec("point");
+  const QueryFilter filter = readQueryFilter(o);
+  return pushShapes(L, scene, coreQuery(L, "query_point", [&] { return scene.world->queryPoint(point, filter); }));
 }
 
 int overlap(lua_State* L) {
@@ -123,7 +153,8 @@ int overlap(lua_State* L) {
   const Options o = queryOptions(L, "overlap", kOverlapOptions);
   const Shape shape = queryShape(o);
   const Transform xf{o.vec("position", Vec2::Zero()), Rot::fromAngle(o.number("angle", 0.0))};
-  return pushShapes(L, scene, scene.world->overlap(shape, xf, readQueryFilter(o)));
+  const QueryFilter filter = readQueryFilter(o);
+  return pushShapes(L, scene, coreQuery(L, "overlap", [&] { return scene.world->overlap(shape, xf, filter); }));
 }
 
 int shapeCast(lua_State* L) {
@@ -131,14 +162,11 @@ int shapeCast(lua_State* L) {
   const Options o = queryOptions(L, "shape_cast", kShapeCastOptions);
   const Shape shape = queryShape(o);
   const Vec2 from = o.vec("from"), to = o.vec("to");
+  requireSpan(o, "to", "from", from, to, "the cast's length");
   const Transform xf{from, Rot::fromAngle(o.number("angle", 0.0))};
-  std::optional<RayHit> hit;
-  try {
-    hit = scene.world->shapeCast(shape, xf, to - from, readQueryFilter(o));
-  } catch (const InputError& e) {
-    failCore(L, "shape_cast", e);
-  }
-  return pushOptionalHit(L, scene, hit);
+  const QueryFilter filter = readQueryFilter(o);
+  return pushOptionalHit(L, scene,
+                         coreQuery(L, "shape_cast", [&] { return scene.world->shapeCast(shape, xf, to - from, filter); }));
 }
 
 int explode(lua_State* L) {
@@ -149,14 +177,15 @@ int explode(lua_State* L) {
   e.radius = o.positive("radius", e.radius);
   e.falloff = o.nonNegative("falloff", e.falloff);
   e.impulse = o.nonNegative("impulse", e.impulse);
+  // Distances are compared through their squares: a reach whose square overflows would miss bodies
+  // whose distance from a far position overflows too, silently.
+  if (!std::isfinite((e.radius + e.falloff) * (e.radius + e.falloff)))
+    o.fail(e.falloff > e.radius ? "falloff" : "radius",
+           "is too large: radius + falloff (" + formatNumber(e.radius + e.falloff) +
+               ") must be below about 1e154 m (its square overflows)");
   e.filter.category = o.bits("category", e.filter.category);
   e.filter.mask = o.bits("mask", e.filter.mask);
-  std::vector<BodyId> pushed;
-  try {
-    pushed = scene.world->explode(e);
-  } catch (const InputError& err) {
-    failCore(L, "explode", err);
-  }
+  const std::vector<BodyId> pushed = coreQuery(L, "explode", [&] { return scene.world->explode(e); });
   pushHandles(L, pushed, [&](BodyId id) { return bodyHandle(L, scene, id); });
   return 1;
 }

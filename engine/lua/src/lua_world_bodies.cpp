@@ -142,11 +142,11 @@ int addChain(lua_State* L) {
   const ShapeDef s = readShapeOptions(o, false);
   chain.material = s.material;
   chain.filter = s.filter;
+  chain.sensor = s.sensor;
   World& world = *scene.world;
   const BodyId id = create(L, world, "add_chain", d);
   try {
-    for (const ShapeId segment : world.createChain(id, chain))
-      if (s.sensor) world.setShapeSensor(segment, true);
+    world.createChain(id, chain);
   } catch (const InputError& e) {
     world.destroyBody(id);
     failCore(L, "add_chain", e);  // "points[3] repeats the point before it, (1, 0)"

@@ -15,6 +15,7 @@
 #include "lua_events.h"
 #include "lua_snapshot.h"
 #include "rigidlab/error.h"
+#include "rigidlab/lua/bounded_file.h"
 #include "rigidlab/lua/data_directory.h"
 #include "rigidlab/lua/scene_text.h"
 #include "scene_line.h"
@@ -369,18 +370,15 @@ std::string displayName(const std::filesystem::path& file) {
 std::unique_ptr<Scene> Scene::loadFile(const std::filesystem::path& file, const SceneOptions& options) {
   const std::string name = displayName(file);
   if (!std::filesystem::is_regular_file(file)) throw SceneError(name + ": no such scene file");
-  // Read with a host-independent limit first: the state does not exist yet.
-  ScriptLimits limits = options.limits;
-  std::error_code ec;
-  const auto size = std::filesystem::file_size(file, ec);
-  if (!ec && size > limits.source_bytes)
-    throw SceneError(name + ": file is " + std::to_string(size) + " bytes, larger than the limit of " +
-                     std::to_string(limits.source_bytes));
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw SceneError(name + ": cannot read the file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return std::unique_ptr<Scene>(new Scene(load(text.str(), name, file, options)));
+  // Read within the limit first (the size before reading, and no further while reading): the
+  // state does not exist yet.
+  std::string text;
+  try {
+    text = readBoundedFile(file, options.limits.source_bytes, name, "a scene file");
+  } catch (const std::runtime_error& e) {
+    throw SceneError(e.what());
+  }
+  return std::unique_ptr<Scene>(new Scene(load(text, name, file, options)));
 }
 
 std::unique_ptr<Scene> Scene::loadString(std::string_view source, const std::string& name, const SceneOptions& options) {

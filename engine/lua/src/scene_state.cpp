@@ -25,6 +25,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "budget.h"
 #include "lua_args.h"
 #include "lua_snapshot.h"
 
@@ -195,6 +196,7 @@ class Encoder {
   }
 
   void value(int index, int depth) {
+    if (++values_ % kBudgetEvery == 0) Budget::check(L_);  // millions of values: budget.h
     switch (lua_type(L_, index)) {
       case LUA_TNIL:
         out_ += static_cast<char>(kNil);
@@ -257,6 +259,7 @@ class Encoder {
     lua_pushnil(L_);
     while (lua_next(L_, t) != 0) {
       lua_pop(L_, 1);  // the value
+      if (++values_ % kBudgetEvery == 0) Budget::check(L_);
       const int k = lua_gettop(L_);
       SortKey key;
       switch (lua_type(L_, k)) {
@@ -289,7 +292,7 @@ class Encoder {
       lua_pushvalue(L_, k);
       lua_rawseti(L_, keys, key.position);
     }
-    std::sort(order.begin(), order.end(), before);
+    budgetedSort(L_, order.begin(), order.end(), before);
     out_ += static_cast<char>(vec2 ? kVec2Table : kTable);
     putRaw(out_, order.size(), 8);
     for (size_t i = 0; i < order.size(); ++i) {
@@ -310,6 +313,7 @@ class Encoder {
   }
 
   lua_State* L_;
+  uint64_t values_ = 0;  // values written or read, for the budget's checks
   Scene::Impl& scene_;
   std::string out_;
   std::vector<int> path_;
@@ -353,6 +357,7 @@ class Decoder {
   }
 
   void value(int depth) {
+    if (++values_ % kBudgetEvery == 0) Budget::check(L_);
     luaL_checkstack(L_, 6, "LoadState: the state is nested too deeply");
     const uint64_t tag = raw(1, "a value's kind");
     switch (tag) {
@@ -437,6 +442,7 @@ class Decoder {
   }
 
   lua_State* L_;
+  uint64_t values_ = 0;  // values written or read, for the budget's checks
   Scene::Impl& scene_;
   std::string_view in_;
   size_t pos_ = 0;

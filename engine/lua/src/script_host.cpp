@@ -12,6 +12,7 @@
 #include "lua_args.h"
 #include "lua_math.h"
 #include "ordered_pairs.h"
+#include "rigidlab/lua/bounded_file.h"
 #include "rigidlab/lua/scene_text.h"
 #include "scene_line.h"
 
@@ -588,17 +589,11 @@ void ScriptHost::runPrelude() {
 }
 
 std::string ScriptHost::readSource(const std::filesystem::path& file, const std::string& name) const {
-  std::error_code ec;
-  const auto size = std::filesystem::file_size(file, ec);
-  if (ec) throw SceneError(name + ": cannot read: " + ec.message());
-  if (size > options_.limits.source_bytes)
-    throw SceneError(name + ": file is " + std::to_string(size) + " bytes, larger than the limit of " +
-                     std::to_string(options_.limits.source_bytes));
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw SceneError(name + ": cannot read: " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  try {
+    return readBoundedFile(file, options_.limits.source_bytes, name, "a module file");
+  } catch (const std::runtime_error& e) {
+    throw SceneError(e.what());
+  }
 }
 
 void ScriptHost::pushChunk(std::string_view source, const std::string& name) {
@@ -678,7 +673,12 @@ int ScriptHost::requireModule(lua_State* L) {
   if (found.empty()) fail(L, "require", "module '" + name + "' not found (looked for " + relative + " in " + looked + ")");
 
   const std::string display = found.lexically_normal().string();
-  const std::string source = readSource(real, display);  // the file checked, not the link again
+  std::string source;
+  try {
+    source = readSource(real, display);  // the file checked, not the link again
+  } catch (const SceneError& e) {
+    fail(L, "require", e.what());  // "require: forces/big.lua: the file is ... bytes, more than the limit ..."
+  }
   if (std::find(required_.begin(), required_.end(), found) == required_.end()) required_.push_back(found);
   ++calls;
   lua_pushcfunction(L, messageHandler);

@@ -9,7 +9,7 @@
 //   the scene's directory and the module directories, as text, into the same state.
 // - all memory goes through a counting allocator with a cap (ScriptLimits::memory_bytes; the scene
 //   may lower it with scene.memory_limit).
-// - every call into Lua runs under a wall-clock budget (budget.h); pcall/xpcall are wrapped so they
+// - every call into Lua runs under a CPU-time budget (budget.h); pcall/xpcall are wrapped so they
 //   cannot swallow the budget error. C functions the hook cannot interrupt are capped
 //   (caps.h, installGuards in script_host.cpp): string.find/match/gmatch/gsub refuse a pattern
 //   whose worst-case matching work on the subject exceeds kPatternWorkLimit; table.sort of more
@@ -93,7 +93,7 @@ class ScriptHost {
   // (default: asks the open window).
   std::string errorText(std::string message, std::string_view context, std::optional<bool> budget_spent = std::nullopt);
 
-  // The scene's wall-clock budget (budget.h).
+  // The scene's CPU-time budget (budget.h).
   Budget& budget() { return *budget_; }
   const ScriptLimits& limits() const { return options_.limits; }
   // Lowers the memory cap (scene.memory_limit); never raises it.

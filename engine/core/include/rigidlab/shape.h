@@ -70,6 +70,10 @@ Shape makeCapsule(const Vec2& a, const Vec2& b, double radius);
 Shape makeSegment(const Vec2& a, const Vec2& b);
 // Segment a–b of a chain whose previous point is ghost1 and next point ghost2.
 Shape makeChainSegment(const Vec2& ghost1, const Vec2& a, const Vec2& b, const Vec2& ghost2);
+// Shapes are computed with the squares of their coordinates (lengths, normals, extents): a point
+// whose square overflows (about 1e154 m from the body's origin) is refused, InputError naming
+// `field` ("vertices[3]", "points[2]") and the point.
+void requireNearOrigin(const std::string& field, const Vec2& p);
 // The shape moved by `offset` and turned by `angle` about the body origin (offset and angle of a
 // shape in body coordinates).
 Shape transformShape(const Shape& shape, const Vec2& offset, double angle);

@@ -344,6 +344,9 @@ class World {
   void setShapeFilter(ShapeId id, const Filter& filter);
   void setShapeDensity(ShapeId id, double density);  // recomputes the body's mass
   void setShapeSensor(ShapeId id, bool sensor);
+  // setShapeSensor for every shape of the body, with one mass update (linear in the shapes; one
+  // call per shape costs their square: a 65 536-segment chain took 36 s).
+  void setBodySensor(BodyId id, bool sensor);
   void setShapeEvents(ShapeId id, bool contact_events, bool hit_events, double hit_speed);  // ShapeDef
   void setShapeOneWay(ShapeId id, std::optional<Vec2> normal);  // ShapeDef::one_way
   void setShapePreSolve(ShapeId id, bool on);
@@ -357,7 +360,9 @@ class World {
     bool loop = false;
     Material material;
     Filter filter;
+    bool sensor = false;  // every segment a sensor
   };
+  // Linear in the number of points.
   std::vector<ShapeId> createChain(BodyId body, const ChainDef& def);
 
   // --- joints (joint.h). A joint is removed with either of its bodies (and a gear with either of

@@ -75,4 +75,11 @@ std::string serializeSnapshot(const WorldSnapshot& snapshot);
 // corrupt file, another version, indices out of range).
 WorldSnapshot deserializeSnapshot(std::string_view bytes);
 
+// A snapshot file's header: the magic, the version and the payload's length. From the first
+// kSnapshotHeaderBytes bytes of a file, the size of the whole file it announces, so that a reader
+// can refuse a file that is not a snapshot (/dev/zero) or one too large before reading the rest;
+// SnapshotError as deserializeSnapshot's for a foreign or short header or another version.
+inline constexpr size_t kSnapshotHeaderBytes = 30;
+uint64_t snapshotFileBytes(std::string_view header);
+
 }  // namespace rigidlab

@@ -38,7 +38,8 @@ class SceneError : public std::runtime_error {
 struct ScriptLimits {
   size_t memory_bytes = size_t{256} << 20;  // cap of the scene's Lua allocator
   size_t source_bytes = size_t{4} << 20;    // largest scene or module file (and load() chunk)
-  // Wall-clock budgets (engine/lua/src/budget.h). A script still running when its budget is
+  // Budgets of the scene thread's CPU time, C++ calls the script makes included, with a wall-clock
+  // backstop of 10 times the budget (engine/lua/src/budget.h). A script still running when its budget is
   // spent stops with "<file>:<line>: <hook>: script ran longer than its budget of 1 s (infinite
   // loop?)"; pcall cannot catch it.
   double hook_seconds = 1.0;   // each call of the main chunk, PopulateWorld, OnStep, Check, OnKey, OnDraw, Exact,
