@@ -64,14 +64,15 @@ void evaluateForces(WorldImpl& w, double t0, double t, bool state_dependent, std
   w.stats.forces_ms += std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-// Linear and angular acceleration of body i from its accumulated wrench: a = F/m + g, α = τ/I.
+// Linear and angular acceleration of body i from its accumulated wrench: a = F/m + g, α = τ/I,
+// g the body's own gravity if it has one (BodyDef::gravity), else the world's.
 struct Accel {
   Vec2 a;
   double alpha;
 };
 [[gnu::always_inline]] inline Accel accelerationOf(const WorldImpl& w, uint32_t i, const Wrench& wr) {
   const Body& b = w.bodies[i];
-  return {wr.force * b.inv_mass + w.def.gravity * b.gravity_scale, wr.torque * b.inv_inertia};
+  return {wr.force * b.inv_mass + b.gravityOr(w.def.gravity) * b.gravity_scale, wr.torque * b.inv_inertia};
 }
 
 void setStageState(WorldImpl& w, uint32_t i, const Vec2& c, double angle, const Vec2& v, double omega) {

@@ -1,7 +1,7 @@
 // The snapshot file format (world_snapshot.h). Binary, little-endian, versioned:
 //
 //   "RIGIDLAB-SNAPSHOT\n"  magic (18 bytes)
-//   u32 version            kVersion (3); versions 1 and 2 are read too
+//   u32 version            kVersion (4); versions 1 to 3 are read too
 //   u64 payload length
 //   payload                the label; since version 2 the application data (u64 length, bytes);
 //                          then the state, field by field (io() below)
@@ -31,8 +31,11 @@ constexpr char kMagic[] = "RIGIDLAB-SNAPSHOT\n";
 constexpr size_t kMagicBytes = sizeof kMagic - 1;
 // Version 1: version 2 without the application data. Version 2: version 3 with five more numbers
 // per contact point, which only sequential impulses' prepare writes and the step reads no more
-// (io(ContactPoint) below).
-constexpr uint32_t kVersion = 3;
+// (io(ContactPoint) below). Version 4 adds what version 3 lacks, each at the end of its record:
+// a body's own gravity, sleeping_allowed and set inertia; a shape's tangent speed and rolling
+// resistance; a joint's local anchors; a constant force's torque; contact events' per-point
+// values; the collision filter's decisions. A version 3 file reads with their defaults.
+constexpr uint32_t kVersion = 4;
 constexpr uint32_t kOldestVersion = 1;
 
 uint64_t fnv1a(std::string_view bytes) {
@@ -49,6 +52,7 @@ enum ForceTag : uint8_t { kNoForce, kSpring, kDamper, kMouse, kConstant, kOpaque
 class Writer {
  public:
   static constexpr bool kReading = false;
+  static constexpr uint32_t version = kVersion;  // what is written
   std::string out;
 
   void raw(uint64_t v, int bytes) {
@@ -301,6 +305,12 @@ void io(A& a, Body& b) {
   a(b.sleep_time);
   io(a, b.shapes);
   a(b.name);
+  if (a.version >= 4) {
+    a(b.own_gravity);
+    io(a, b.gravity);
+    a(b.sleeping_allowed);
+    a(b.inertia_set);
+  }
 }
 
 template <typename A>
@@ -319,6 +329,10 @@ void io(A& a, BodyShape& s) {
   io(a, s.filter);
   a(s.density);
   io(a, s.geometry);
+  if (a.version >= 4) {
+    a(s.tangent_speed);
+    a(s.rolling_resistance);
+  }
 }
 
 template <typename A>
@@ -366,6 +380,10 @@ void io(A& a, JointDef& d) {
   a(d.ratio);
   io(a, d.joint_a);
   io(a, d.joint_b);
+  if (a.version >= 4) {
+    io(a, d.local_anchor_a);
+    io(a, d.local_anchor_b);
+  }
 }
 
 template <typename A>
@@ -504,14 +522,17 @@ void io(A& a, ForceEntry& e) {
       case kConstant: {
         Vec2 force = Vec2::Zero();
         std::optional<Vec2> point;
+        double torque = 0.0;
         if constexpr (!A::kReading) {
           const auto& c = static_cast<const ConstantForce&>(*e.force);
           force = c.force();
           point = c.localPoint();
+          torque = c.torque();
         }
         io(a, force);
         io(a, point);
-        if constexpr (A::kReading) e.force = std::make_shared<ConstantForce>(force, point);
+        if (a.version >= 4) a(torque);
+        if constexpr (A::kReading) e.force = std::make_shared<ConstantForce>(force, point, torque);
         break;
       }
       default: {  // kOpaque
@@ -570,6 +591,23 @@ void io(A& a, World::ContactEvent& e) {
   a(e.approach_speed);
   a(e.normal_impulse);
   a(e.tangent_impulse);
+  if (a.version >= 4) {
+    for (int i = 0; i < 2; ++i) {
+      a(e.separations[i]);
+      a(e.normal_impulses[i]);
+      a(e.tangent_impulses[i]);
+    }
+    for (double* x : {&e.friction, &e.static_friction, &e.restitution, &e.tangent_speed, &e.rolling_resistance}) a(*x);
+  }
+}
+
+template <typename A>
+void io(A& a, WorldImpl::FilterDecision& d) {
+  a(d.a);
+  a(d.b);
+  a(d.generation_a);
+  a(d.generation_b);
+  a(d.collide);
 }
 
 template <typename A>
@@ -735,6 +773,12 @@ void io(A& a, WorldImpl& w) {
   io(a, w.fast_bodies);
   io(a, w.impact.log);
   io(a, w.impact.intervals);
+  if (a.version >= 4) {
+    a(w.surface_shapes);
+    io(a, w.filter_decisions);
+  } else if constexpr (A::kReading) {
+    w.surface_shapes = 0;  // no shape of an older file has surface effects
+  }
 }
 
 // --- the checks a read state must pass before a step may index with it
@@ -813,7 +857,8 @@ void validate(const WorldImpl& w) {
     check(jointSlot(j.a) && jointSlot(j.b) && jointSlot(j.c) && jointSlot(j.d),
           "joint " + std::to_string(i) + " names a body slot out of range");
     if (j.alive && j.type == JointType::Gear)
-      check(j.joint_a < nj && j.joint_b < nj, "gear " + std::to_string(i) + " names a joint out of range");
+      check((j.joint_a < nj && j.joint_b < nj) || (j.joint_a == kNoJoint && j.joint_b == kNoJoint),
+            "gear " + std::to_string(i) + " names a joint out of range");
   }
   for (uint32_t i = 0; i < nf; ++i) {
     const ForceEntry& f = w.forces[i];
