@@ -1,15 +1,17 @@
 // Body handles in Lua: fields (read, and write where it makes sense) and methods.
 //
-//   read/write  position (body origin), angle, velocity, angular_velocity, mass, type, static, name,
-//               awake, linear_damping, angular_damping, gravity_scale, fixed_rotation, bullet,
-//               enabled, user_data; and for all its shapes restitution, friction, static_friction,
-//               sensor, category, mask, group
-//   read only   id, center (world centre of mass), local_center, inertia, density, shapes, removed;
+//   read/write  position (body origin), angle, velocity, angular_velocity, mass, inertia, type, static,
+//               name, awake, linear_damping, angular_damping, gravity_scale, gravity (nil: the
+//               world's), sleeping_allowed, fixed_rotation, bullet, enabled, user_data; and for all
+//               its shapes restitution, friction, static_friction, sensor, category, mask, group
+//   read only   id, center (world centre of mass), local_center, density, shapes, removed, world;
 //               for a one-shape body shape ("circle" | "polygon" | "capsule" | ...), radius, vertices
 //   methods     body:apply_impulse(j [, point])          point: world, default the centre of mass
 //               body:apply_force(f [, point [, duration]])  duration default: the next step only
-//               body:add_shape{...} (lua_shape.cpp), body:set_target{position, angle, time},
-//               body:joints() (lua_joint.cpp), body:contacts() (lua_contact.cpp)
+//               body:apply_torque(t [, duration]), body:apply_angular_impulse(j)
+//               body:world_point(p), local_point(p), world_vector(v), local_vector(v), velocity_at(p)
+//               body:reset_mass(), body:add_shape{...} (lua_shape.cpp), body:set_target{position,
+//               angle, time}, body:joints() (lua_joint.cpp), body:contacts() (lua_contact.cpp)
 // A misspelt field is an error naming the closest valid one.
 #include <algorithm>
 
@@ -85,6 +87,67 @@ int applyForce(lua_State* L) {
   return 0;
 }
 
+int applyTorque(lua_State* L) {
+  sol::stack_object self(L, 1), t(L, 2), d(L, 3);
+  const LuaBody& b = selfBody(L, self, "apply_torque");
+  requireIdle(L, *b.scene, "apply_torque");
+  const BodyId id = liveBody(L, b, "apply_torque");
+  World& w = worldOf(L, b, "apply_torque");
+  const double torque = numberArg(L, "apply_torque", "torque", t);
+  double duration = World::kNextStep;
+  if (!isMissing(d)) {
+    duration = numberArg(L, "apply_torque", "duration", d);
+    if (!(duration > 0)) fail(L, "apply_torque", "duration must be > 0, got " + formatNumber(duration));
+  }
+  try {
+    w.addForce(std::make_unique<ConstantForce>(Vec2::Zero(), std::nullopt, torque), id, {}, duration);
+  } catch (const InputError& e) {
+    fail(L, "apply_torque", e.what());
+  }
+  return 0;
+}
+
+int applyAngularImpulse(lua_State* L) {
+  sol::stack_object self(L, 1), j(L, 2);
+  const LuaBody& b = selfBody(L, self, "apply_angular_impulse");
+  requireIdle(L, *b.scene, "apply_angular_impulse");
+  const BodyId id = liveBody(L, b, "apply_angular_impulse");
+  worldOf(L, b, "apply_angular_impulse").applyAngularImpulse(id, numberArg(L, "apply_angular_impulse", "impulse", j));
+  return 0;
+}
+
+// body:world_point(p) and the other frame helpers: the body's transform now (origin, angle).
+enum class Frame { WorldPoint, LocalPoint, WorldVector, LocalVector, VelocityAt };
+template <Frame F>
+int frameHelper(lua_State* L) {
+  static constexpr const char* kNames[] = {"world_point", "local_point", "world_vector", "local_vector", "velocity_at"};
+  const char* function = kNames[static_cast<int>(F)];
+  const LuaBody& b = selfBody(L, sol::stack_object(L, 1), function);
+  const Body& body = worldOf(L, b, function).body(liveBody(L, b, function));
+  const bool vector = F == Frame::WorldVector || F == Frame::LocalVector;
+  const Vec2 x = vecArg(L, function, vector ? "vector" : "point", sol::stack_object(L, 2));
+  switch (F) {
+    case Frame::WorldPoint: pushVec(L, body.xf.apply(x)); break;
+    case Frame::LocalPoint: pushVec(L, body.xf.applyInverse(x)); break;
+    case Frame::WorldVector: pushVec(L, body.xf.q.apply(x)); break;
+    case Frame::LocalVector: pushVec(L, body.xf.q.applyInverse(x)); break;
+    case Frame::VelocityAt: pushVec(L, body.pointVelocity(x)); break;  // v + ω × (p − c), p world
+  }
+  return 1;
+}
+
+int resetMass(lua_State* L) {
+  const LuaBody& b = selfBody(L, sol::stack_object(L, 1), "reset_mass");
+  requireIdle(L, *b.scene, "reset_mass");
+  const BodyId id = liveBody(L, b, "reset_mass");
+  try {
+    worldOf(L, b, "reset_mass").resetMass(id);
+  } catch (const InputError& e) {
+    failCore(L, "reset_mass", e);
+  }
+  return 0;
+}
+
 int setTarget(lua_State* L) {
   const LuaBody& b = selfBody(L, sol::stack_object(L, 1), "set_target");
   requireIdle(L, *b.scene, "set_target");
@@ -109,6 +172,14 @@ int setTarget(lua_State* L) {
 lua_CFunction bodyMethod(std::string_view name) {
   static const NamedFunction kMethods[] = {{"apply_impulse", guarded<applyImpulse>},
                                            {"apply_force", guarded<applyForce>},
+                                           {"apply_torque", guarded<applyTorque>},
+                                           {"apply_angular_impulse", guarded<applyAngularImpulse>},
+                                           {"world_point", guarded<frameHelper<Frame::WorldPoint>>},
+                                           {"local_point", guarded<frameHelper<Frame::LocalPoint>>},
+                                           {"world_vector", guarded<frameHelper<Frame::WorldVector>>},
+                                           {"local_vector", guarded<frameHelper<Frame::LocalVector>>},
+                                           {"velocity_at", guarded<frameHelper<Frame::VelocityAt>>},
+                                           {"reset_mass", guarded<resetMass>},
                                            {"add_shape", addShapeMethod},
                                            {"set_target", guarded<setTarget>},
                                            {"joints", bodyJointsMethod},
@@ -166,6 +237,7 @@ sol::object bodyIndex(lua_State* L, const LuaBody& self, const sol::stack_object
   const std::string k = fieldName(L, "body", key);
   if (k == "removed") return sol::make_object(L, !worldOf(L, self, "body.removed").isValid(self.id));
   if (k == "id") return sol::make_object(L, self.uid);
+  if (k == "world") return self.scene->world_handle;
   if (const lua_CFunction f = bodyMethod(k)) {
     lua_pushcfunction(L, f);
     return sol::stack::pop<sol::object>(L);
@@ -189,6 +261,8 @@ sol::object bodyIndex(lua_State* L, const LuaBody& self, const sol::stack_object
   if (k == "linear_damping") return sol::make_object(L, b.linear_damping);
   if (k == "angular_damping") return sol::make_object(L, b.angular_damping);
   if (k == "gravity_scale") return sol::make_object(L, b.gravity_scale);
+  if (k == "gravity") return b.own_gravity ? makeVec(L, b.gravity) : sol::make_object(L, sol::lua_nil);
+  if (k == "sleeping_allowed") return sol::make_object(L, b.sleeping_allowed);
   if (k == "fixed_rotation") return sol::make_object(L, b.fixed_rotation);
   if (k == "bullet") return sol::make_object(L, b.bullet);
   if (k == "enabled") return sol::make_object(L, b.enabled);
@@ -228,6 +302,12 @@ void bodyNewIndex(lua_State* L, const LuaBody& self, const sol::stack_object& ke
       const double m = numberArg(L, function, "value", value);
       if (!(m > 0)) fail(L, function, "must be > 0, got " + formatNumber(m));
       w.setMass(id, m);
+    } else if (k == "inertia") {
+      w.setInertia(id, checkNumber(L, function, "", value, Range::Positive));
+    } else if (k == "gravity") {
+      w.setBodyGravity(id, isMissing(value) ? std::nullopt : std::optional(vecArg(L, function, "value", value)));
+    } else if (k == "sleeping_allowed") {
+      w.setSleepingAllowed(id, checkBool(L, function, "", value));
     } else if (k == "static") {
       w.setType(id, checkBool(L, function, "", value) ? BodyType::Static : BodyType::Dynamic);
     } else if (k == "type") {

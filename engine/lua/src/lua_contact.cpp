@@ -7,8 +7,32 @@
 
 namespace rigidlab::lua {
 
+namespace {
+
+// The fields events and current contacts share (the manifold's points, the surface).
+template <typename C>
+void copyPoints(const C& c, ContactView& v) {
+  v.count = c.count;
+  for (int i = 0; i < c.count; ++i) {
+    v.points[i] = c.points[i];
+    v.separations[i] = c.separations[i];
+    v.normal_impulses[i] = c.normal_impulses[i];
+    v.tangent_impulses[i] = c.tangent_impulses[i];
+  }
+  v.friction = c.friction;
+  v.static_friction = c.static_friction;
+  v.restitution = c.restitution;
+  v.tangent_speed = c.tangent_speed;
+  v.rolling_resistance = c.rolling_resistance;
+}
+
+}  // namespace
+
 ContactView contactView(const World::ContactEvent& e) {
-  return {e.a, e.b, e.shape_a, e.shape_b, e.point, e.normal, e.approach_speed, e.normal_impulse, e.tangent_impulse};
+  ContactView v{e.a, e.b, e.shape_a, e.shape_b, e.point, e.normal, e.approach_speed, e.normal_impulse, e.tangent_impulse};
+  copyPoints(e, v);
+  v.touching = e.kind != World::ContactEvent::Kind::End;
+  return v;
 }
 
 ContactView contactView(const World& world, const ContactInfo& c) {
@@ -19,7 +43,10 @@ ContactView contactView(const World& world, const ContactInfo& c) {
     tangent_impulse += c.tangent_impulses[i];
   }
   const double approach = -(world.body(c.b).pointVelocity(point) - world.body(c.a).pointVelocity(point)).dot(c.normal);
-  return {c.a, c.b, c.shape_a, c.shape_b, point, c.normal, approach, normal_impulse, tangent_impulse};
+  ContactView v{c.a, c.b, c.shape_a, c.shape_b, point, c.normal, approach, normal_impulse, tangent_impulse};
+  copyPoints(c, v);
+  v.touching = c.touching;
+  return v;
 }
 
 const char* contactEventKind(World::ContactEvent::Kind kind) {
@@ -39,8 +66,13 @@ namespace {
 // The names of a contact table, pushed once per pusher (ContactPusher::key): a key pushed from the
 // stack and set with rawset skips the lookup of its C string that lua_setfield makes.
 constexpr const char* kKeys[] = {"a", "b", "shape_a", "shape_b", "point", "normal", "approach_speed",
-                                 "normal_impulse", "tangent_impulse", "kind", "x", "y"};
-enum Key { A, B, ShapeA, ShapeB, Point, Normal, ApproachSpeed, NormalImpulse, TangentImpulse, Kind, X, Y, KeyCount };
+                                 "normal_impulse", "tangent_impulse", "kind", "x", "y", "points", "separation",
+                                 "friction", "static_friction", "restitution", "tangent_speed", "rolling_resistance",
+                                 "touching"};
+enum Key {
+  A, B, ShapeA, ShapeB, Point, Normal, ApproachSpeed, NormalImpulse, TangentImpulse, Kind, X, Y, Points, Separation,
+  Friction, StaticFriction, Restitution, TangentSpeed, RollingResistance, Touching, KeyCount
+};
 constexpr int kSlots = 3 + KeyCount;  // the two caches, the metatable, the keys
 
 }  // namespace
@@ -100,7 +132,7 @@ void ContactPusher::push(const ContactView& c, const char* kind) {
     lua_pushnumber(L, x);
     lua_rawset(L, -3);
   };
-  lua_createtable(L, 0, kind ? 10 : 9);
+  lua_createtable(L, 0, kind ? 17 : 16);
   body(A, c.a);
   body(B, c.b);
   shape(ShapeA, c.shape_a);
@@ -110,6 +142,26 @@ void ContactPusher::push(const ContactView& c, const char* kind) {
   number(ApproachSpeed, c.approach_speed);
   number(NormalImpulse, c.normal_impulse);
   number(TangentImpulse, c.tangent_impulse);
+  number(Friction, c.friction);
+  number(StaticFriction, c.static_friction);
+  number(Restitution, c.restitution);
+  number(TangentSpeed, c.tangent_speed);
+  number(RollingResistance, c.rolling_resistance);
+  key(Touching);
+  lua_pushboolean(L, c.touching);
+  lua_rawset(L, -3);
+  // points: the manifold's, each {point, separation, normal_impulse, tangent_impulse}.
+  key(Points);
+  lua_createtable(L, c.count, 0);
+  for (int i = 0; i < c.count; ++i) {
+    lua_createtable(L, 0, 4);
+    vec(Point, c.points[i]);
+    number(Separation, c.separations[i]);
+    number(NormalImpulse, c.normal_impulses[i]);
+    number(TangentImpulse, c.tangent_impulses[i]);
+    lua_rawseti(L, -2, i + 1);
+  }
+  lua_rawset(L, -3);
   if (kind) {
     key(Kind);
     lua_pushstring(L, kind);
@@ -119,21 +171,25 @@ void ContactPusher::push(const ContactView& c, const char* kind) {
 
 namespace {
 
-int bodyContacts(lua_State* L) {
-  const LuaBody* b = toHandle<LuaBody>(L, 1);
-  if (!b) fail(L, "contacts", "call it as body:contacts(), with a colon; got " + describe(L, 1) + " as the body");
-  const BodyId id = liveBody(L, *b, "contacts");
-  const World& w = *b->scene->world;
-  const std::vector<ContactInfo> contacts = w.contactsOf(id);
+// A list of current contacts (body:contacts(), world:contacts()).
+int pushContactList(lua_State* L, Scene::Impl& scene, const std::vector<ContactInfo>& contacts) {
+  const World& w = *scene.world;
   lua_createtable(L, static_cast<int>(contacts.size()), 0);
   const int list = lua_gettop(L);
-  ContactPusher pusher(L, *b->scene);
+  ContactPusher pusher(L, scene);
   for (size_t i = 0; i < contacts.size(); ++i) {
     pusher.push(contactView(w, contacts[i]));
     lua_rawseti(L, list, static_cast<lua_Integer>(i + 1));
   }
   pusher.done();
   return 1;
+}
+
+int bodyContacts(lua_State* L) {
+  const LuaBody* b = toHandle<LuaBody>(L, 1);
+  if (!b) fail(L, "contacts", "call it as body:contacts(), with a colon; got " + describe(L, 1) + " as the body");
+  const BodyId id = liveBody(L, *b, "contacts");
+  return pushContactList(L, *b->scene, b->scene->world->contactsOf(id));
 }
 
 int contactEvents(lua_State* L) {
@@ -150,9 +206,16 @@ int contactEvents(lua_State* L) {
   return 1;
 }
 
+// world:contacts(): every touching contact (World::touchingContacts), as body:contacts() gives them.
+int worldContacts(lua_State* L) {
+  Scene::Impl& scene = selfWorld(L, "contacts");
+  return pushContactList(L, scene, scene.world->touchingContacts());
+}
+
 }  // namespace
 
 int bodyContactsMethod(lua_State* L) { return guarded<bodyContacts>(L); }
 int contactEventsMethod(lua_State* L) { return guarded<contactEvents>(L); }
+int worldContactsMethod(lua_State* L) { return guarded<worldContacts>(L); }
 
 }  // namespace rigidlab::lua

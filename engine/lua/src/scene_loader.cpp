@@ -243,6 +243,8 @@ void setUp(Scene::Impl& s) {
   registerSnapshotType(L);
   s.handles = s.host->lua().create_table();
   s.user_data = s.host->lua().create_table();
+  s.shape_user_data = s.host->lua().create_table();
+  s.joint_user_data = s.host->lua().create_table();
   s.shape_handles = makeWeakTable(L);
   s.joint_handles = makeWeakTable(L);
 }
@@ -306,6 +308,8 @@ std::unique_ptr<Scene::Impl> load(std::string_view source, const std::string& na
     s->on_draw = hook(*s, "OnDraw");
     s->exact = hook(*s, "Exact");
     for (const EventHook& h : eventHooks()) (*s).*h.slot = hook(*s, h.name.data());
+    s->should_collide = hook(*s, "ShouldCollide");
+    installShouldCollide(*s);
     s->on_mouse = hook(*s, "OnMouse");
     s->on_control = hook(*s, "OnControl");
     s->save_state = hook(*s, "SaveState");
@@ -316,6 +320,7 @@ std::unique_ptr<Scene::Impl> load(std::string_view source, const std::string& na
   if (!defined(populate))
     throw SceneError(name + ": PopulateWorld is not defined (a scene must define function PopulateWorld(world))");
   call(*s, populate, "PopulateWorld", s->world_handle);
+  for (const std::string& warning : unraisedEventWarnings(*s)) host.log(name + ": " + warning);
   return s;
 }
 
@@ -364,7 +369,8 @@ Scene::Impl::~Impl() {
   pre_solve_functions = sol::table();
   on_mouse = on_control = sol::object();
   save_state = load_state = sol::object();
-  handles = user_data = shape_handles = joint_handles = sol::table();
+  handles = user_data = shape_handles = joint_handles = shape_user_data = joint_user_data = sol::table();
+  should_collide = sol::object();
   world_handle = draw_handle = sol::object();
   draw = nullptr;
   host.reset();
