@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "rigidlab/lua/scene.h"
+#include "rigidlab/lua/scene_writer.h"
 #include "scene_test_util.h"
 
 using namespace rigidlab;
@@ -666,4 +667,46 @@ TEST_CASE("porting: LÖVE's and Box2D's names are answered with rigidlab's") {
     CAPTURE(m);
     CHECK(m.find(expected) != std::string::npos);
   }
+}
+
+TEST_CASE("porting: a saved world keeps own gravity, sleeping_allowed, surfaces and a gear of two bodies") {
+  auto original = load(R"lua(
+    function PopulateWorld(world)
+      world:add_box{ static = true, width = 20, height = 1, position = {0, -0.5}, tangent_speed = 1.5 }
+      local ball = world:add_circle{ radius = 0.5, position = {0, 0.5}, gravity = {0, -3}, sleeping_allowed = false,
+                                     rolling_resistance = 0.2 }
+      ball:add_shape{ shape = "box", width = 0.2, height = 0.2, offset = {0.5, 0}, tangent_speed = -1 }
+      local a = world:add_circle{ radius = 1, position = {5, 5} }
+      local b = world:add_circle{ radius = 0.5, position = {8, 5} }
+      world:add_revolute{ a = a, anchor = {5, 5} }
+      world:add_revolute{ a = b, anchor = {8, 5} }
+      world:add_gear{ a = a, b = b, ratio = 2 }
+    end)lua");
+  const std::string saved = lua::sceneSource(original->world(), original->settings());
+  CAPTURE(saved);
+  auto loaded = load(saved);
+  const World &o = original->world(), &l = loaded->world();
+  REQUIRE(l.bodyCount() == o.bodyCount());
+  REQUIRE(l.jointIds().size() == o.jointIds().size());
+  const std::vector<BodyId> ob = o.bodyIds(), lb = l.bodyIds();
+  for (size_t i = 0; i < ob.size(); ++i) {
+    const Body &x = o.body(ob[i]), &y = l.body(lb[i]);
+    CHECK(x.own_gravity == y.own_gravity);
+    CHECK(x.gravity == y.gravity);
+    CHECK(x.sleeping_allowed == y.sleeping_allowed);
+    REQUIRE(x.shapes.size() == y.shapes.size());
+    for (size_t k = 0; k < x.shapes.size(); ++k) {
+      CHECK(o.shape(x.shapes[k]).tangent_speed == l.shape(y.shapes[k]).tangent_speed);
+      CHECK(o.shape(x.shapes[k]).rolling_resistance == l.shape(y.shapes[k]).rolling_resistance);
+    }
+  }
+  const JointDef& gear = l.joint(l.jointIds().back());
+  CHECK(gear.type == JointType::Gear);
+  CHECK(gear.joint_a.isNull());
+  CHECK(gear.ratio == 2.0);
+  for (int i = 0; i < 60; ++i) {
+    original->step();
+    loaded->step();
+  }
+  for (size_t i = 0; i < ob.size(); ++i) CHECK(o.body(ob[i]).center == l.body(lb[i]).center);
 }
