@@ -5,6 +5,9 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -709,4 +712,60 @@ TEST_CASE("porting: a saved world keeps own gravity, sleeping_allowed, surfaces 
     loaded->step();
   }
   for (size_t i = 0; i < ob.size(); ++i) CHECK(o.body(ob[i]).center == l.body(lb[i]).center);
+}
+
+namespace {
+
+std::filesystem::path sourceDirectory() { return std::filesystem::canonical(lua::scriptsDirectory()).parent_path(); }
+
+std::vector<std::string> linesOf(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  REQUIRE_MESSAGE(in, "cannot open " << file);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+// The rows `| \`name\` | equivalent |` of the section of docs/porting.md that starts with the line
+// `heading`, up to the next "## " heading: name → equivalent.
+std::map<std::string, std::string> tableRows(const std::vector<std::string>& doc, const std::string& heading) {
+  std::map<std::string, std::string> rows;
+  bool in = false;
+  for (const std::string& line : doc) {
+    if (line.starts_with("## ")) in = line == heading;
+    if (!in || !line.starts_with("| `")) continue;
+    const size_t close = line.find('`', 3);
+    REQUIRE(close != std::string::npos);
+    const std::string name = line.substr(3, close - 3);
+    CHECK_MESSAGE(rows.count(name) == 0, name << " is listed twice");
+    rows[name] = line.substr(close + 1);
+  }
+  return rows;
+}
+
+}  // namespace
+
+TEST_CASE("porting: docs/porting.md has a row for every love.physics and Box2D v3.1 function; love.physics coverage >= 95 %") {
+  const std::vector<std::string> doc = linesOf(sourceDirectory() / "docs" / "porting.md");
+  struct Table {
+    const char* heading;
+    const char* names;  // tests/lua/data: one name a line
+  };
+  for (const Table& t : {Table{"## love.physics → rigidlab", "love_physics_11_5.txt"}, Table{"## Box2D v3 → rigidlab", "box2d_v3_1.txt"}}) {
+    CAPTURE(t.heading);
+    const std::map<std::string, std::string> rows = tableRows(doc, t.heading);
+    const std::vector<std::string> names = linesOf(sourceDirectory() / "tests" / "lua" / "data" / t.names);
+    for (const std::string& name : names) CHECK_MESSAGE(rows.count(name) == 1, name << " has no row");
+    CHECK(rows.size() == names.size());
+    size_t none = 0;
+    for (const auto& [name, equivalent] : rows) {
+      CAPTURE(name);
+      const bool lacks = equivalent.find("**none**") != std::string::npos && equivalent.find("**none**") < 4;
+      none += lacks;
+      CHECK(equivalent.size() > 8);  // something is said
+    }
+    const double coverage = 1.0 - static_cast<double>(none) / static_cast<double>(names.size());
+    MESSAGE(std::string(t.heading) << ": " << names.size() - none << " of " << names.size() << " have an equivalent (" << 100 * coverage << " %)");
+    if (std::string(t.names).starts_with("love")) CHECK(coverage >= 0.95);
+  }
 }
