@@ -186,6 +186,19 @@ int benchCommand(const std::vector<std::string>& argv) {
       std::printf("Lua spring / built-in spring: %.2fx per step; %.2f us per Lua force evaluation\n", ratio, per_call_us);
     }
   }
+  // The cost of a pre_solve function: the same contacts with and without one.
+  if (const auto with = find("pre_solve"), without = find("pre_solve_off"); with != results.end() && without != results.end()) {
+    const double per_call_us = 1000.0 * (with->num("ms_median").value_or(NAN) - without->num("ms_median").value_or(NAN)) /
+                               std::max(1.0, with->num("lua_calls_per_step").value_or(1));
+    if (json) {
+      std::printf("{\"engine\": \"rigidlab\", \"ratio\": \"pre_solve/pre_solve_off\", \"value\": %s, \"pre_solve_call_us\": %s}\n",
+                  fmt(with->num("ms_median").value_or(NAN) / without->num("ms_median").value_or(NAN)).c_str(),
+                  fmt(per_call_us).c_str());
+    } else {
+      std::printf("pre_solve / none: %.2fx per step; %.2f us per pre_solve call\n",
+                  with->num("ms_median").value_or(NAN) / without->num("ms_median").value_or(NAN), per_call_us);
+    }
+  }
   return kExitOk;
 }
 

@@ -35,3 +35,12 @@ expect_equal("events: begin events" "${value}" 1000)
 run(0 bench events --steps 1 --reps 1 --json)
 string(JSON value GET "${out}" lua_calls_per_step)
 expect_equal("events: Lua calls (1000 OnContactBegin and OnStep)" "${value}" 1001)
+
+# One step of 1000 resting contacts: a call of the floor's pre_solve function for each, none
+# without it (bench_command.cpp prints the difference of their step times per call).
+run(0 bench pre_solve --steps 1 --reps 1 --json)
+string(JSON value GET "${out}" lua_calls_per_step)
+expect_equal("pre_solve: Lua calls (one per contact)" "${value}" 1000)
+run(0 bench pre_solve_off --steps 1 --reps 1 --json)
+string(JSON value GET "${out}" lua_calls_per_step)
+expect_equal("pre_solve_off: no Lua call" "${value}" 0)
