@@ -49,6 +49,15 @@ Vec2 vecArg(lua_State* L, std::string_view function, std::string_view what, cons
   return checkVec(L, function, what, v);
 }
 
+// The optional `duration` argument of apply_force and apply_torque: > 0 seconds, default the next
+// step only.
+double durationArg(lua_State* L, std::string_view function, const sol::stack_object& d) {
+  if (isMissing(d)) return World::kNextStep;
+  const double duration = numberArg(L, function, "duration", d);
+  if (!(duration > 0)) fail(L, function, "duration must be > 0, got " + formatNumber(duration));
+  return duration;
+}
+
 int applyImpulse(lua_State* L) {
   sol::stack_object self(L, 1), j(L, 2), p(L, 3);
   const LuaBody& b = selfBody(L, self, "apply_impulse");
@@ -74,11 +83,7 @@ int applyForce(lua_State* L) {
   const Vec2 force = vecArg(L, "apply_force", "force", f);
   std::optional<Vec2> local;  // a world point is attached to the body where it is now
   if (!isMissing(p)) local = w.body(id).xf.applyInverse(vecArg(L, "apply_force", "point", p));
-  double duration = World::kNextStep;
-  if (!isMissing(d)) {
-    duration = numberArg(L, "apply_force", "duration", d);
-    if (!(duration > 0)) fail(L, "apply_force", "duration must be > 0, got " + formatNumber(duration));
-  }
+  const double duration = durationArg(L, "apply_force", d);
   try {
     w.addForce(std::make_unique<ConstantForce>(force, local), id, {}, duration);
   } catch (const InputError& e) {
@@ -94,11 +99,7 @@ int applyTorque(lua_State* L) {
   const BodyId id = liveBody(L, b, "apply_torque");
   World& w = worldOf(L, b, "apply_torque");
   const double torque = numberArg(L, "apply_torque", "torque", t);
-  double duration = World::kNextStep;
-  if (!isMissing(d)) {
-    duration = numberArg(L, "apply_torque", "duration", d);
-    if (!(duration > 0)) fail(L, "apply_torque", "duration must be > 0, got " + formatNumber(duration));
-  }
+  const double duration = durationArg(L, "apply_torque", d);
   try {
     w.addForce(std::make_unique<ConstantForce>(Vec2::Zero(), std::nullopt, torque), id, {}, duration);
   } catch (const InputError& e) {

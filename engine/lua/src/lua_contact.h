@@ -27,10 +27,10 @@ ContactView contactView(const World::ContactEvent& e);
 ContactView contactView(const World& world, const ContactInfo& c);
 
 // Pushes {a, b, shape_a, shape_b, point, normal, approach_speed, normal_impulse, tangent_impulse,
-// points = {{point, separation, normal_impulse, tangent_impulse}, ...}, friction, static_friction,
-// restitution, tangent_speed, rolling_resistance, touching} (api::kContactFields) and, if `kind` is
-// given, kind = "begin" | "end" | "hit". A body removed since is nil; a removed shape's handle
-// says removed.
+// points} and, if `kind` is given, kind = "begin" | "end" | "hit"; `points` lists the manifold's
+// points ({point, separation, normal_impulse, tangent_impulse} each) and the table's metatable reads
+// friction, static_friction, restitution, tangent_speed, rolling_resistance and touching
+// (api::kContactFields). A body removed since is nil; a removed shape's handle says removed.
 void pushContact(lua_State* L, Scene::Impl& scene, const ContactView& c, const char* kind = nullptr);
 
 // pushContact for many contacts: what each table needs from the registry (the body and shape
@@ -48,6 +48,9 @@ class ContactPusher {
   int base_;  // the body handle cache; the shape handle cache and the metatable above it
 };
 const char* contactEventKind(World::ContactEvent::Kind kind);
+
+// The metatables of contact tables and their points (lua_contact.cpp), at load.
+void registerContactTypes(lua_State* L);
 
 // body:contacts(), world:contact_events() and world:contacts().
 int bodyContactsMethod(lua_State* L);

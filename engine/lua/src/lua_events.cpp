@@ -32,13 +32,24 @@ void requirePreSolveFunction(lua_State* L, std::string_view function, std::strin
 
 uint64_t keyOf(ShapeId id) { return handleKey(id.index, id.generation); }
 
-// A number a pre_solve function wrote into its contact table (field `k`), checked as the shape
-// option of that name is; `was` if the field holds it still.
+// Lua called from inside the world's step (pre_solve functions, ShouldCollide): under the step's
+// Lua budget, a Lua error thrown as ScriptError naming `what` (the step is then undone).
+template <typename Body>
+void duringStep(Scene::Impl& s, std::string_view what, Body body) {
+  ScriptHost& host = *s.host;
+  const Budget::Scope budget(host.budget(), Budget::Kind::Force);
+  const auto error = host.run([&] { body(host); });
+  if (error) throw ScriptError(host.errorText(*error, what));
+}
+
+// A number a pre_solve function wrote into its contact table (field `k`: the table's metatable
+// gives the contact's values, a write puts the field in the table itself), checked as the shape
+// option of that name is; `was` if none was written.
 double writtenNumber(lua_State* L, int table, const char* k, double was, Range range) {
   lua_pushstring(L, k);
   lua_rawget(L, table);
   const sol::object v = sol::stack::pop<sol::object>(L);
-  if (v.get_type() == sol::type::number && v.as<double>() == was) return was;
+  if (v.get_type() == sol::type::lua_nil) return was;
   const double x = checkNumber(L, "pre_solve", std::string("contact.") + k, v, range);
   if (std::string_view(k) == "restitution" && x > 1.0)
     fail(L, "pre_solve", "contact.restitution must be between 0 and 1, got " + formatNumber(x));
@@ -68,11 +79,9 @@ bool readPreSolveWrites(lua_State* L, int table, ContactInfo& c) {
 // contact (and the other is not asked). What they wrote into the table's writable fields
 // (readPreSolveWrites) holds for this step. Runs inside the step, under the step's Lua budget.
 bool runPreSolve(Scene::Impl& s, ContactInfo& c) {
-  ScriptHost& host = *s.host;
-  lua_State* L = host.L();
-  const Budget::Scope budget(host.budget(), Budget::Kind::Force);
+  lua_State* L = s.host->L();
   bool enabled = true;
-  const auto error = host.run([&] {
+  duringStep(s, "pre_solve", [&](ScriptHost& host) {
     const int top = lua_gettop(L);
     pushContact(L, s, contactView(*s.world, c));
     for (const ShapeId id : {c.shape_a, c.shape_b}) {
@@ -93,7 +102,6 @@ bool runPreSolve(Scene::Impl& s, ContactInfo& c) {
     enabled = readPreSolveWrites(L, top + 1, c) && enabled;
     lua_settop(L, top);
   });
-  if (error) throw ScriptError(host.errorText(*error, "pre_solve"));
   return enabled;
 }
 
@@ -197,11 +205,9 @@ namespace {
 // during the step (broad_phase.cpp), once per pair whose boxes begin to overlap, under the step's
 // Lua budget as pre_solve functions are; false keeps the pair apart while their boxes overlap.
 bool runShouldCollide(Scene::Impl& s, ShapeId a, ShapeId b) {
-  ScriptHost& host = *s.host;
-  lua_State* L = host.L();
-  const Budget::Scope budget(host.budget(), Budget::Kind::Force);
+  lua_State* L = s.host->L();
   bool collide = true;
-  const auto error = host.run([&] {
+  duringStep(s, "ShouldCollide", [&](ScriptHost& host) {
     const int top = lua_gettop(L);
     s.should_collide.push(L);
     pushShapeHandle(L, s, a);
@@ -211,7 +217,6 @@ bool runShouldCollide(Scene::Impl& s, ShapeId a, ShapeId b) {
     collide = !(lua_type(L, -1) == LUA_TBOOLEAN && !lua_toboolean(L, -1));
     lua_settop(L, top);
   });
-  if (error) throw ScriptError(host.errorText(*error, "ShouldCollide"));
   return collide;
 }
 

@@ -12,6 +12,7 @@
 #include "api_names.h"
 #include "bindings.h"
 #include "lua_args.h"
+#include "lua_contact.h"
 #include "lua_events.h"
 #include "lua_snapshot.h"
 #include "rigidlab/error.h"
@@ -241,6 +242,7 @@ void setUp(Scene::Impl& s) {
   registerJointType(L);
   registerControlsType(L);
   registerSnapshotType(L);
+  registerContactTypes(L);
   s.handles = s.host->lua().create_table();
   s.user_data = s.host->lua().create_table();
   s.shape_user_data = s.host->lua().create_table();
