@@ -163,7 +163,7 @@ inline double relative(const SolverBody& a, const SolverBody& b, const SolverPoi
 // The normal impulses of a two-point contact as one 2×2 linear complementarity problem
 // (E. Catto, Box2D 2.4 b2ContactSolver, block solver): find x ≥ 0 with v_n = K (x − a) + v_n0 ≥ 0
 // and x_i v_n,i = 0, trying the four cases (both points pushing, one, the other, none).
-inline void solveBlock(SolverBody& a, SolverBody& b, SolverContact& c) {
+[[gnu::always_inline]] inline void solveBlock(SolverBody& a, SolverBody& b, SolverContact& c) {
   SolverPoint &p1 = c.p[0], &p2 = c.p[1];
   const double a1 = p1.pn, a2 = p2.pn;
   // v_n = K x + r
@@ -209,7 +209,7 @@ inline void solveRolling(SolverBody& a, SolverBody& b, const SolverContact& c, S
 // surface effects (ContactSurface): friction aims at the tangent speed instead of 0, and rolling
 // resistance comes last.
 template <bool kSurface>
-inline void solveContact(std::vector<SolverBody>& bodies, SolverContact& c, SolverSurface* surface) {
+[[gnu::noinline]] void solveContact(std::vector<SolverBody>& bodies, SolverContact& c, SolverSurface* surface) {
   SolverBody& a = bodies[c.a];
   SolverBody& b = bodies[c.b];
   const double tx = c.ny, ty = -c.nx;  // t = n × 1
@@ -238,6 +238,8 @@ inline void solveContact(std::vector<SolverBody>& bodies, SolverContact& c, Solv
   if constexpr (kSurface) solveRolling(a, b, c, *surface);
 }
 
+// One pass over a contact with or without surface effects. Loops over many contacts test once
+// whether any has them (WorldImpl::solver_surfaces empty), so that the plain pass runs as it is.
 inline void solve(std::vector<SolverBody>& bodies, SolverContact& c, std::vector<SolverSurface>& surfaces) {
   if (c.surface == kNoSurface) {
     solveContact<false>(bodies, c, nullptr);
@@ -351,6 +353,7 @@ void convergeSmallIslands(WorldImpl& w, std::vector<SolverBody>& bodies, std::ve
     }
     if (points <= static_cast<uint32_t>(kSmallIsland)) {
       const int passes = (jointed ? kMoreJointIterations : kMoreIterations) * w.def.iterations;
+      const bool plain = w.solver_surfaces.empty();  // no contact with surface effects
       // Per joint of the island, the size of its impulses after its last solve (only its own solve
       // changes them).
       auto& sizes = w.island_joint_sizes;
@@ -371,7 +374,11 @@ void convergeSmallIslands(WorldImpl& w, std::vector<SolverBody>& bodies, std::ve
           if (jointed && order[k] >= nc) continue;
           SolverContact& c = constraints[order[k]];
           const double p0 = c.p[0].pn, p1 = c.p[1].pn;
-          solve(bodies, c, w.solver_surfaces);
+          if (plain) {
+            solveContact<false>(bodies, c, nullptr);
+          } else {
+            solve(bodies, c, w.solver_surfaces);
+          }
           change = std::max({change, std::abs(c.p[0].pn - p0), std::abs(c.p[1].pn - p1)});
           size = std::max({size, c.p[0].pn, c.p[1].pn});
         }
@@ -582,9 +589,14 @@ void solveContacts(WorldImpl& w) {
   // then the equalities exactly again (the passes for contacts, limits and motors moved them).
   findJointIslands(w);
   directJointVelocities(w, bodies);
+  const bool plain = w.solver_surfaces.empty();  // no contact with surface effects
   for (int it = 0; it < w.def.iterations; ++it) {
     for (uint32_t k : w.si_joints) solveJointVelocity(bodies, w.joints[k], step, false);
-    for (SolverContact& c : constraints) solve(bodies, c, w.solver_surfaces);
+    if (plain) {
+      for (SolverContact& c : constraints) solveContact<false>(bodies, c, nullptr);
+    } else {
+      for (SolverContact& c : constraints) solve(bodies, c, w.solver_surfaces);
+    }
   }
   convergeSmallIslands(w, bodies, constraints, step);
   directJointVelocities(w, bodies);

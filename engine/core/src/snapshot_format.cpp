@@ -431,6 +431,10 @@ void io(A& a, Joint& j) {
   io(a, j.local_axis);
   a(j.reference_angle);
   a(j.length);
+  // Before version 4 a pulley's definition did not keep its constant (now its `length`, which
+  // World::updateJoint checks and keeps): it is the joint's.
+  if constexpr (A::kReading)
+    if (a.version < 4 && j.def.type == JointType::Pulley) j.def.length = j.length;
   a(j.joint_a);
   a(j.joint_b);
   for (Joint::GearSide& g : j.gear) {
