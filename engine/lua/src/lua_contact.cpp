@@ -2,6 +2,8 @@
 // body:contacts() and world:contact_events().
 #include "lua_contact.h"
 
+#include <cstddef>
+#include <cstdint>
 #include <type_traits>
 
 #include "lua_args.h"
@@ -67,18 +69,23 @@ namespace {
 
 // What a contact table has beyond its plain fields, in one small userdata: `points` is it (a list
 // of the manifold's points, each {point, separation, normal_impulse, tangent_impulse}, made into a
-// table when first read and then kept), and the contact table's metatable reads friction,
-// static_friction, restitution, tangent_speed, rolling_resistance and touching from it. So a
-// contact costs this one allocation more than before, not a table and a vec2 per point and six
-// more fields: delivering a contact event took 30 % more instructions with those (9 290 against
-// 7 160), 19 % with this (8 500; callgrind of bench events, docs/performance.md "Events").
+// table when read), and the contact table's metatable reads friction, static_friction,
+// restitution, tangent_speed, rolling_resistance and touching from it. The userdata holds only the
+// contact's points (no user value, so the collector has nothing in it to walk): a contact costs
+// this one allocation more than before, not a table and a vec2 per point and six more fields.
+// Instructions per contact event delivered (callgrind of bench events): 7 160 on main, 9 290 with
+// those, 8 500 with a fixed-size userdata holding a cache of the point tables, 8 430 with this.
+struct ContactPointData {
+  double x, y, separation, normal_impulse, tangent_impulse;
+};
 struct LuaContactExtra {
   static constexpr const char* kMetatable = "rigidlab.contact_points";
-  int count;
+  uint8_t count;
   bool touching;
-  double x[2], y[2], separation[2], normal_impulse[2], tangent_impulse[2];
   double friction, static_friction, restitution, tangent_speed, rolling_resistance;
+  ContactPointData points[2];  // `count` of them are allocated
 };
+constexpr size_t extraBytes(int count) { return offsetof(LuaContactExtra, points) + count * sizeof(ContactPointData); }
 constexpr const char* kContactMetatable = "rigidlab.contact";
 
 int contactPointsIndex(lua_State* L) {
@@ -88,26 +95,16 @@ int contactPointsIndex(lua_State* L) {
     fail(L, "contact.points", "is a list: index it with 1 .. #points, got " + describe(L, 2));
   const lua_Integer i = lua_tointeger(L, 2);
   if (i < 1 || i > p->count) return 0;  // nil: the end of the list
-  if (lua_getiuservalue(L, 1, 1) != LUA_TTABLE) {  // the points made so far
-    lua_pop(L, 1);
-    lua_createtable(L, p->count, 0);
-    lua_pushvalue(L, -1);
-    lua_setiuservalue(L, 1, 1);
-  }
-  if (lua_rawgeti(L, -1, i) != LUA_TNIL) return 1;
-  lua_pop(L, 1);
-  const size_t k = static_cast<size_t>(i - 1);
+  const ContactPointData& d = p->points[i - 1];
   lua_createtable(L, 0, 4);
-  pushVec(L, Vec2(p->x[k], p->y[k]));
+  pushVec(L, Vec2(d.x, d.y));
   lua_setfield(L, -2, "point");
-  lua_pushnumber(L, p->separation[k]);
+  lua_pushnumber(L, d.separation);
   lua_setfield(L, -2, "separation");
-  lua_pushnumber(L, p->normal_impulse[k]);
+  lua_pushnumber(L, d.normal_impulse);
   lua_setfield(L, -2, "normal_impulse");
-  lua_pushnumber(L, p->tangent_impulse[k]);
+  lua_pushnumber(L, d.tangent_impulse);
   lua_setfield(L, -2, "tangent_impulse");
-  lua_pushvalue(L, -1);
-  lua_rawseti(L, -3, i);
   return 1;
 }
 
@@ -248,9 +245,8 @@ void ContactPusher::push(const ContactView& c, const char* kind) {
   number(TangentImpulse, c.tangent_impulse);
   // points: the manifold's, each {point, separation, normal_impulse, tangent_impulse} once read.
   key(Points);
-  auto* points = static_cast<LuaContactExtra*>(lua_newuserdatauv(L, sizeof(LuaContactExtra), 1));
-  *points = LuaContactExtra{};
-  points->count = c.count;
+  auto* points = static_cast<LuaContactExtra*>(lua_newuserdatauv(L, extraBytes(c.count), 0));
+  points->count = static_cast<uint8_t>(c.count);
   points->touching = c.touching;
   points->friction = c.friction;
   points->static_friction = c.static_friction;
@@ -258,11 +254,7 @@ void ContactPusher::push(const ContactView& c, const char* kind) {
   points->tangent_speed = c.tangent_speed;
   points->rolling_resistance = c.rolling_resistance;
   for (int i = 0; i < c.count; ++i) {
-    points->x[i] = c.points[i].x();
-    points->y[i] = c.points[i].y();
-    points->separation[i] = c.separations[i];
-    points->normal_impulse[i] = c.normal_impulses[i];
-    points->tangent_impulse[i] = c.tangent_impulses[i];
+    points->points[i] = {c.points[i].x(), c.points[i].y(), c.separations[i], c.normal_impulses[i], c.tangent_impulses[i]};
   }
   lua_pushvalue(L, points_metatable);
   lua_setmetatable(L, -2);
