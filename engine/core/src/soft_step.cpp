@@ -122,7 +122,6 @@ struct PassContext {
   SoftTally* tallies;            // of this group's lanes
   SoftTotals* totals;            // of this group
   std::vector<SoftKick>* warm;   // relax pass, not the last sub-step: the next warm start
-  SoftSurfaceLanes* surface;     // of this group when it has surface effects (SoftLanes::surface), else nullptr
 };
 
 // The warm start of the next sub-step: the velocity change the lane's final impulses cause, added
@@ -148,7 +147,7 @@ inline void addWarmStart(const SoftBody& a, const SoftBody& b, const SoftLanes& 
 // bound by instructions, not memory (callgrind: 660 instructions per contact and pass when it
 // worked on the lane arrays in place, reloading them after every store).
 template <bool kSoft, int N>
-inline void solveContact(std::vector<SoftBody>& bodies, SoftLanes& c, int l, const PassContext& ctx) {
+inline void solveContact(std::vector<SoftBody>& bodies, SoftLanes& c, int l, const PassContext& ctx, SoftSurfaceLanes* surface) {
   SoftBody a = bodies[c.a[l]], b = bodies[c.b[l]];
   const double nx = c.nx[l], ny = c.ny[l];
   Anchor r[N];
@@ -218,7 +217,7 @@ inline void solveContact(std::vector<SoftBody>& bodies, SoftLanes& c, int l, con
   double pt[N];
   bool acted = false;
   // A surface's own tangent speed (a conveyor), which friction aims for instead of 0.
-  const double tangent_speed = ctx.surface ? ctx.surface->tangent_speed[l] : 0.0;
+  const double tangent_speed = surface ? surface->tangent_speed[l] : 0.0;
   for (int i = 0; i < N; ++i) {
     const double limit = c.friction[i][l] * pn[i];
     const double old = c.pt[i][l];
@@ -227,9 +226,9 @@ inline void solveContact(std::vector<SoftBody>& bodies, SoftLanes& c, int l, con
     apply(a, b, r[i], lambda * tx, lambda * ty);
     acted |= (pn[i] != 0.0) | (pt[i] != 0.0);
   }
-  if (ctx.surface && ctx.surface->rolling[l] > 0.0) {
+  if (surface && surface->rolling[l] > 0.0) {
     // Rolling resistance (contact_solver.cpp solveRolling), from zero at each sub-step's soft pass.
-    SoftSurfaceLanes& sl = *ctx.surface;
+    SoftSurfaceLanes& sl = *surface;
     double total = 0.0;
     for (int i = 0; i < N; ++i) total += pn[i];
     const double limit = sl.rolling[l] * total, old = kSoft ? 0.0 : sl.rolling_impulse[l];
@@ -257,12 +256,12 @@ inline void solveContact(std::vector<SoftBody>& bodies, SoftLanes& c, int l, con
 }
 
 template <bool kSoft>
-void solveGroup(std::vector<SoftBody>& bodies, SoftLanes& c, const PassContext& ctx) {
+void solveGroup(std::vector<SoftBody>& bodies, SoftLanes& c, const PassContext& ctx, SoftSurfaceLanes* surface) {
   for (int l = 0; l < L; ++l) {
     if (c.count[l] == 2) {
-      solveContact<kSoft, 2>(bodies, c, l, ctx);
+      solveContact<kSoft, 2>(bodies, c, l, ctx, surface);
     } else if (c.count[l] == 1) {
-      solveContact<kSoft, 1>(bodies, c, l, ctx);
+      solveContact<kSoft, 1>(bodies, c, l, ctx, surface);
     }
   }
 }
@@ -420,9 +419,10 @@ template <int NP, bool kThreaded>
 }
 
 // NP: the most points of any lane (SoftLanes::points); groups of one-point contacts (circles) skip
-// the second point's work, half of the pass.
-template <bool kSoft, int NP, bool kThreaded>
-[[gnu::always_inline]] inline void solveWide(std::vector<SoftBody>& bodies, SoftLanes& c, const PassContext& ctx) {
+// the second point's work, half of the pass. kSurface: the group has surface effects (surface),
+// a separate instance so that the others compile as they did without them.
+template <bool kSoft, int NP, bool kThreaded, bool kSurface>
+[[gnu::always_inline]] inline void solveWide(std::vector<SoftBody>& bodies, SoftLanes& c, const PassContext& ctx, SoftSurfaceLanes* surface) {
   WideBody a = gather(bodies, c.a), b = gather(bodies, c.b);
   const V nx = load(c.nx), ny = load(c.ny);
   const V zero = splat(0.0);
@@ -508,20 +508,19 @@ template <bool kSoft, int NP, bool kThreaded>
   const V tx = ny, ty = -nx;  // t = n × 1
   V pt[2];
   // Surface effects (SoftSurfaceLanes) only in groups that have them (SoftLanes::surface, a byte
-  // of the group's first line): groups without them run as before.
-  SoftSurfaceLanes* const surface = ctx.surface;
+  // of the group's first line).
   for (int i = 0; i < NP; ++i) {
     const V limit = load(c.friction[i]) * pn[i];
     const V old = load(c.pt[i]);
     V slip = relativeWide(a, b, r[i], tx, ty);
-    if (surface) slip -= load(surface->tangent_speed);
+    if constexpr (kSurface) slip -= load(surface->tangent_speed);
     pt[i] = vmin(vmax(old - load(c.tangent_mass[i]) * slip, -limit), limit);
     applyWide(a, b, r[i], (pt[i] - old) * tx, (pt[i] - old) * ty);
     store(c.pn[i], pn[i]);
     store(c.pt[i], pt[i]);
   }
-  M rolled = M{0, 0, 0, 0};
-  if (surface) {
+  [[maybe_unused]] M rolled;  // kSurface only
+  if constexpr (kSurface) {
     // Rolling resistance on the four lanes (solveContact's), lanes without it bounded by zero.
     const V total = NP == 2 ? pn[0] + pn[1] : pn[0];
     const V limit = load(surface->rolling) * total, old = kSoft ? zero : load(surface->rolling_impulse);
@@ -535,7 +534,8 @@ template <bool kSoft, int NP, bool kThreaded>
   scatter<kThreaded>(bodies, c.b, b);
   // Only real points count (a neutral one's impulses are zero unless the velocities are not finite).
   const M two = M{c.count[0], c.count[1], c.count[2], c.count[3]} == 2;
-  M acted = (pn[0] != zero) | (pt[0] != zero) | rolled;
+  M acted = (pn[0] != zero) | (pt[0] != zero);
+  if constexpr (kSurface) acted |= rolled;
   if (NP == 2) acted |= two & ((pn[1] != zero) | (pt[1] != zero));
   // Empty lanes may record anything: the write-back reads real contacts only.
   storeMask(c.acted, loadMask(c.acted) | acted);
@@ -556,32 +556,37 @@ bool& onePointPass() {
 
 // One pass over the groups g0 … g1. kThreaded: other groups of the colour may be solved on other
 // threads at the same time, so bodies that several lanes share are not written (see scatter);
-// fixed at compile time so that the serial pass stores without a test per lane.
-template <bool kSoft, bool kThreaded>
+// fixed at compile time so that the serial pass stores without a test per lane. kSurfaces: some
+// group has surface effects (SoftLanes::surface); a separate instance, so that steps without them
+// run the code they ran before them (with the test per group inside, the pass of a 40-row pyramid
+// took 3 % more instructions, cachegrind).
+template <bool kSoft, bool kThreaded, bool kSurfaces>
 [[gnu::always_inline]] inline void passGroups(std::vector<SoftBody>& bodies, std::vector<SoftLanes>& groups, std::vector<SoftTally>& tallies,
                                               std::vector<SoftTotals>& totals, std::vector<SoftSurfaceLanes>* surfaces, double inv_h, int substep, std::vector<SoftKick>* warm,
                                               const Level* levels, size_t g0, size_t g1) {
   for (size_t g = g0; g < g1; ++g) {
-    const PassContext ctx{inv_h, substep, levels, &tallies[g * L], &totals[g], warm,
-                          groups[g].surface ? &(*surfaces)[g] : nullptr};
+    SoftSurfaceLanes* const surface = kSurfaces && groups[g].surface ? &(*surfaces)[g] : nullptr;
+    const PassContext ctx{inv_h, substep, levels, &tallies[g * L], &totals[g], warm};
     if (groups[g].serial) {
-      solveGroup<kSoft>(bodies, groups[g], ctx);
+      solveGroup<kSoft>(bodies, groups[g], ctx, surface);
     } else if (groups[g].points <= 1 && onePointPass()) {
-      solveWide<kSoft, 1, kThreaded>(bodies, groups[g], ctx);
+      if (kSurfaces && surface) solveWide<kSoft, 1, kThreaded, kSurfaces>(bodies, groups[g], ctx, surface);
+      else solveWide<kSoft, 1, kThreaded, false>(bodies, groups[g], ctx, nullptr);
     } else {
-      solveWide<kSoft, 2, kThreaded>(bodies, groups[g], ctx);
+      if (kSurfaces && surface) solveWide<kSoft, 2, kThreaded, kSurfaces>(bodies, groups[g], ctx, surface);
+      else solveWide<kSoft, 2, kThreaded, false>(bodies, groups[g], ctx, nullptr);
     }
   }
 }
 
-template <bool kSoft>
+template <bool kSoft, bool kSurfaces>
 [[gnu::always_inline]] inline void passBody(std::vector<SoftBody>& bodies, std::vector<SoftLanes>& groups, std::vector<SoftTally>& tallies,
                                             std::vector<SoftTotals>& totals, std::vector<SoftSurfaceLanes>* surfaces, double inv_h, int substep, std::vector<SoftKick>* warm,
                                             const Level* levels, size_t g0, size_t g1, bool threaded) {
   if (threaded) {
-    passGroups<kSoft, true>(bodies, groups, tallies, totals, surfaces, inv_h, substep, warm, levels, g0, g1);
+    passGroups<kSoft, true, kSurfaces>(bodies, groups, tallies, totals, surfaces, inv_h, substep, warm, levels, g0, g1);
   } else {
-    passGroups<kSoft, false>(bodies, groups, tallies, totals, surfaces, inv_h, substep, warm, levels, g0, g1);
+    passGroups<kSoft, false, kSurfaces>(bodies, groups, tallies, totals, surfaces, inv_h, substep, warm, levels, g0, g1);
   }
 }
 
@@ -599,19 +604,19 @@ bool cpuHasAvx2() { return false; }
 #endif
 
 #if RIGIDLAB_SOFT_STEP_AVX2
-template <bool kSoft>
+template <bool kSoft, bool kSurfaces>
 __attribute__((target("avx2"))) void passAvx2(std::vector<SoftBody>& bodies, std::vector<SoftLanes>& groups, std::vector<SoftTally>& tallies,
                                               std::vector<SoftTotals>& totals, std::vector<SoftSurfaceLanes>* surfaces, double inv_h, int substep, std::vector<SoftKick>* warm,
                   const Level* levels, size_t g0, size_t g1, bool threaded) {
-  passBody<kSoft>(bodies, groups, tallies, totals, surfaces, inv_h, substep, warm, levels, g0, g1, threaded);
+  passBody<kSoft, kSurfaces>(bodies, groups, tallies, totals, surfaces, inv_h, substep, warm, levels, g0, g1, threaded);
 }
 #endif
 
-template <bool kSoft>
+template <bool kSoft, bool kSurfaces>
 void passBaseline(std::vector<SoftBody>& bodies, std::vector<SoftLanes>& groups, std::vector<SoftTally>& tallies,
                   std::vector<SoftTotals>& totals, std::vector<SoftSurfaceLanes>* surfaces, double inv_h, int substep, std::vector<SoftKick>* warm,
                   const Level* levels, size_t g0, size_t g1, bool threaded) {
-  passBody<kSoft>(bodies, groups, tallies, totals, surfaces, inv_h, substep, warm, levels, g0, g1, threaded);
+  passBody<kSoft, kSurfaces>(bodies, groups, tallies, totals, surfaces, inv_h, substep, warm, levels, g0, g1, threaded);
 }
 
 bool& avx2Selected() {
@@ -626,11 +631,13 @@ void pass(std::vector<SoftBody>& bodies, std::vector<SoftLanes>& groups, std::ve
           bool threaded) {
 #if RIGIDLAB_SOFT_STEP_AVX2
   if (avx2Selected()) {
-    passAvx2<kSoft>(bodies, groups, tallies, totals, surfaces, inv_h, substep, warm, levels, g0, g1, threaded);
+    if (surfaces) passAvx2<kSoft, true>(bodies, groups, tallies, totals, surfaces, inv_h, substep, warm, levels, g0, g1, threaded);
+    else passAvx2<kSoft, false>(bodies, groups, tallies, totals, nullptr, inv_h, substep, warm, levels, g0, g1, threaded);
     return;
   }
 #endif
-  passBaseline<kSoft>(bodies, groups, tallies, totals, surfaces, inv_h, substep, warm, levels, g0, g1, threaded);
+  if (surfaces) passBaseline<kSoft, true>(bodies, groups, tallies, totals, surfaces, inv_h, substep, warm, levels, g0, g1, threaded);
+  else passBaseline<kSoft, false>(bodies, groups, tallies, totals, nullptr, inv_h, substep, warm, levels, g0, g1, threaded);
 }
 
 // Restitution after the sub-steps (Box2D v3's b2ApplyRestitution), for points that pushed and
@@ -829,6 +836,18 @@ bool softStepUseAvx2(bool on) {
   return avx2Selected() == on;
 }
 
+namespace {
+// A contact's surface effects in its lane of the group's SoftSurfaceLanes; returns its tangent speed.
+[[gnu::noinline]] double surfaceLane(const ContactSurface& surface, const SoftBody& a, const SoftBody& b, SoftSurfaceLanes& sl, int l) {
+  if (!surface.any()) return 0.0;
+  const double k_roll = a.ii + b.ii;
+  sl.tangent_speed[l] = surface.tangent_speed;
+  sl.rolling[l] = surface.rolling_resistance;
+  sl.rolling_mass[l] = k_roll > 0.0 ? 1.0 / k_roll : 0.0;
+  return surface.tangent_speed;
+}
+}  // namespace
+
 void softStep(WorldImpl& w) {
   const uint32_t n = static_cast<uint32_t>(w.bodies.size());
   const int substeps = w.def.substeps;
@@ -933,6 +952,7 @@ void softStep(WorldImpl& w) {
   // cache on nearly every one (this loop took 40 % of the soft step's own time that way).
   // With several threads, each range of contacts is prepared on its own thread and the warm starts,
   // sums over each body's contacts, are added afterwards serially in the same order.
+  const bool any_surface = !surfaces.empty();
   const auto prepare = [&](size_t k) {
     prefetchContact(w, k, 8);
     prefetchCenters(w, k, 8);
@@ -954,14 +974,7 @@ void softStep(WorldImpl& w) {
       sc.ny[l] = c.normal.y();
       sc.stiff[l] = fixed ? -1 : 0;
       if (sc.bounce[l]) t.restitution = c.restitution;  // the tallies are read for bouncing contacts only
-      const ContactSurface surface = w.surfaceAt(w.soft_solved[k]);
-      if (surface.any()) {
-        SoftSurfaceLanes& sl = surfaces[g];
-        const double k_roll = a.ii + b.ii;
-        sl.tangent_speed[l] = surface.tangent_speed;
-        sl.rolling[l] = surface.rolling_resistance;
-        sl.rolling_mass[l] = k_roll > 0.0 ? 1.0 / k_roll : 0.0;
-      }
+      const double tangent_speed = any_surface ? surfaceLane(w.contact_surfaces[w.soft_solved[k]], a, b, surfaces[g], l) : 0.0;
       const Vec2 nrm = c.normal, tan = cross(c.normal, 1.0);
       const Vec2 ca = w.bodies[c.a].center, cb = w.bodies[c.b].center;
       const SoftKick ka = kick[c.a], kb = kick[c.b];
@@ -981,7 +994,7 @@ void softStep(WorldImpl& w) {
         sc.inv_k[i][l] = 1.0 / kn;
         // f_s or f_d from the slip at the start of the step (docs/design/thesis.md §10), against the
         // surface's own motion; the bodies still hold the velocities of the start of the step.
-        const double slip = relative(a, b, anchorOf(sc, i, l), tan.x(), tan.y()) - surface.tangent_speed;
+        const double slip = relative(a, b, anchorOf(sc, i, l), tan.x(), tan.y()) - tangent_speed;
         sc.friction[i][l] = std::abs(slip) < w.def.static_friction_speed ? c.static_friction : c.friction;
         sc.pn[i][l] = w.def.warm_starting ? cp.normal_impulse : 0.0;
         sc.pt[i][l] = w.def.warm_starting ? cp.tangent_impulse : 0.0;
