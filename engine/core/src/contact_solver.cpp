@@ -370,17 +370,20 @@ void convergeSmallIslands(WorldImpl& w, std::vector<SolverBody>& bodies, std::ve
           change = std::max(change, std::abs(p1 - p0));
           size = std::max(size, p1);
         }
-        for (size_t k = start; k < end; ++k) {
-          if (jointed && order[k] >= nc) continue;
-          SolverContact& c = constraints[order[k]];
-          const double p0 = c.p[0].pn, p1 = c.p[1].pn;
-          if (plain) {
-            solveContact<false>(bodies, c, nullptr);
-          } else {
-            solve(bodies, c, w.solver_surfaces);
+        const auto contactPass = [&](auto solveOne) {
+          for (size_t k = start; k < end; ++k) {
+            if (jointed && order[k] >= nc) continue;
+            SolverContact& c = constraints[order[k]];
+            const double p0 = c.p[0].pn, p1 = c.p[1].pn;
+            solveOne(c);
+            change = std::max({change, std::abs(c.p[0].pn - p0), std::abs(c.p[1].pn - p1)});
+            size = std::max({size, c.p[0].pn, c.p[1].pn});
           }
-          change = std::max({change, std::abs(c.p[0].pn - p0), std::abs(c.p[1].pn - p1)});
-          size = std::max({size, c.p[0].pn, c.p[1].pn});
+        };
+        if (plain) {
+          contactPass([&](SolverContact& c) { solveContact<false>(bodies, c, nullptr); });
+        } else {
+          contactPass([&](SolverContact& c) { solve(bodies, c, w.solver_surfaces); });
         }
         if (change <= 1e-9 * size) break;
       }
@@ -494,6 +497,14 @@ void chooseSolvers(WorldImpl& w) {
   w.si_joints.resize(kept);
 }
 
+// A contact's surface effects as the solver's (SolverSurface): its index, or kNoSurface.
+uint32_t addSurface(const ContactSurface& cs, const SolverBody& a, const SolverBody& b, std::vector<SolverSurface>& surfaces) {
+  if (!cs.any()) return kNoSurface;
+  const double k_roll = a.ii + b.ii;
+  surfaces.push_back({cs.tangent_speed, cs.rolling_resistance, k_roll > 0.0 ? 1.0 / k_roll : 0.0, 0.0});
+  return static_cast<uint32_t>(surfaces.size() - 1);
+}
+
 SolverContact compact(const Contact& c, const SolverPrepared& prep, uint32_t surface) {
   // Zeroed first: a one-point contact's second point is read by convergeSmallIslands's
   // convergence test (its impulse, zero) and must not be whatever the stack held (it decided
@@ -536,8 +547,9 @@ void solveContacts(WorldImpl& w) {
   if (w.solved.empty() && w.si_joints.empty()) return;
   auto& prepared = w.solver_prepared;
   prepared.assign(w.solved.size(), SolverPrepared{});
+  const bool any_surface = !w.contact_surfaces.empty();  // some contact has surface effects (pre_solve.cpp)
   for (size_t k = 0; k < w.solved.size(); ++k)
-    prepare(w, w.contacts[w.solved[k]], prepared[k], w.surfaceAt(w.solved[k]).tangent_speed);
+    prepare(w, w.contacts[w.solved[k]], prepared[k], any_surface ? w.contact_surfaces[w.solved[k]].tangent_speed : 0.0);
 
   auto& bodies = w.solver_velocities;
   bodies.resize(n);
@@ -558,14 +570,9 @@ void solveContacts(WorldImpl& w) {
   auto& surfaces = w.solver_surfaces;
   surfaces.clear();
   for (size_t k = 0; k < w.solved.size(); ++k) {
-    uint32_t surface = kNoSurface;
-    if (const ContactSurface cs = w.surfaceAt(w.solved[k]); cs.any()) {
-      const Contact& c = w.contacts[w.solved[k]];
-      const double k_roll = bodies[c.a].ii + bodies[c.b].ii;
-      surface = static_cast<uint32_t>(surfaces.size());
-      surfaces.push_back({cs.tangent_speed, cs.rolling_resistance, k_roll > 0.0 ? 1.0 / k_roll : 0.0, 0.0});
-    }
-    constraints.push_back(compact(w.contacts[w.solved[k]], prepared[k], surface));
+    const Contact& c = w.contacts[w.solved[k]];
+    const uint32_t surface = any_surface ? addSurface(w.contact_surfaces[w.solved[k]], bodies[c.a], bodies[c.b], surfaces) : kNoSurface;
+    constraints.push_back(compact(c, prepared[k], surface));
   }
   // Joints: on the velocities only (joint.h); their position error is removed afterwards
   // (position_correction.cpp).

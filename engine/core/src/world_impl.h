@@ -257,9 +257,6 @@ struct WorldImpl {
     if (coefficient > 0.0) s.rolling_resistance = coefficient * std::max(a.geometry.radius, b.geometry.radius);
     return s;
   }
-  ContactSurface surfaceAt(size_t contact) const {
-    return contact_surfaces.empty() ? ContactSurface{} : contact_surfaces[contact];
-  }
   // Collision filter (World::setShouldCollide, broad_phase.cpp): the decisions for the pairs whose
   // boxes overlapped at the last step, ascending, so a pair is asked once while it overlaps.
   World::ShouldCollideFn should_collide;
