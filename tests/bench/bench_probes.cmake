@@ -44,3 +44,13 @@ expect_equal("pre_solve: Lua calls (one per contact)" "${value}" 1000)
 run(0 bench pre_solve_off --steps 1 --reps 1 --json)
 string(JSON value GET "${out}" lua_calls_per_step)
 expect_equal("pre_solve_off: no Lua call" "${value}" 0)
+
+# Two steps of the balls put onto the floor and off it: ShouldCollide is asked once per ball when
+# its box begins to overlap the floor's (the first step; on the second the balls are away), besides
+# the two OnStep calls; none without the hook.
+run(0 bench should_collide --steps 2 --reps 1 --json)
+string(JSON value GET "${out}" lua_calls_per_step)
+expect_equal("should_collide: Lua calls per step ((1000 ShouldCollide + 2 OnStep) / 2)" "${value}" 501)
+run(0 bench should_collide_off --steps 2 --reps 1 --json)
+string(JSON value GET "${out}" lua_calls_per_step)
+expect_equal("should_collide_off: Lua calls per step (OnStep)" "${value}" 1)
