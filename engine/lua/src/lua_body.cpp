@@ -58,16 +58,35 @@ double durationArg(lua_State* L, std::string_view function, const sol::stack_obj
   return duration;
 }
 
-int applyImpulse(lua_State* L) {
-  sol::stack_object self(L, 1), j(L, 2), p(L, 3);
-  const LuaBody& b = selfBody(L, self, "apply_impulse");
-  requireIdle(L, *b.scene, "apply_impulse");
-  const BodyId id = liveBody(L, b, "apply_impulse");
-  World& w = worldOf(L, b, "apply_impulse");
-  const Vec2 impulse = vecArg(L, "apply_impulse", "impulse", j);
-  const Vec2 point = isMissing(p) ? w.body(id).center : vecArg(L, "apply_impulse", "point", p);
+// A method that acts on the body: its handle checked, the world not inside a step, the body alive.
+struct ActedOn {
+  World& world;
+  BodyId id;
+};
+ActedOn actedOn(lua_State* L, const char* function) {
+  const LuaBody& b = selfBody(L, sol::stack_object(L, 1), function);
+  requireIdle(L, *b.scene, function);
+  const BodyId id = liveBody(L, b, function);
+  return {worldOf(L, b, function), id};
+}
+
+// A constant force and torque on the body for `duration` (apply_force, apply_torque).
+void addConstantForce(lua_State* L, const char* function, const ActedOn& on, const Vec2& force,
+                      const std::optional<Vec2>& local, double torque, double duration) {
   try {
-    w.applyImpulse(id, impulse, point);
+    on.world.addForce(std::make_unique<ConstantForce>(force, local, torque), on.id, {}, duration);
+  } catch (const InputError& e) {
+    fail(L, function, e.what());
+  }
+}
+
+int applyImpulse(lua_State* L) {
+  const ActedOn on = actedOn(L, "apply_impulse");
+  sol::stack_object j(L, 2), p(L, 3);
+  const Vec2 impulse = vecArg(L, "apply_impulse", "impulse", j);
+  const Vec2 point = isMissing(p) ? on.world.body(on.id).center : vecArg(L, "apply_impulse", "point", p);
+  try {
+    on.world.applyImpulse(on.id, impulse, point);
   } catch (const InputError& e) {
     fail(L, "apply_impulse", e.what());
   }
@@ -75,45 +94,26 @@ int applyImpulse(lua_State* L) {
 }
 
 int applyForce(lua_State* L) {
-  sol::stack_object self(L, 1), f(L, 2), p(L, 3), d(L, 4);
-  const LuaBody& b = selfBody(L, self, "apply_force");
-  requireIdle(L, *b.scene, "apply_force");
-  const BodyId id = liveBody(L, b, "apply_force");
-  World& w = worldOf(L, b, "apply_force");
+  const ActedOn on = actedOn(L, "apply_force");
+  sol::stack_object f(L, 2), p(L, 3), d(L, 4);
   const Vec2 force = vecArg(L, "apply_force", "force", f);
   std::optional<Vec2> local;  // a world point is attached to the body where it is now
-  if (!isMissing(p)) local = w.body(id).xf.applyInverse(vecArg(L, "apply_force", "point", p));
-  const double duration = durationArg(L, "apply_force", d);
-  try {
-    w.addForce(std::make_unique<ConstantForce>(force, local), id, {}, duration);
-  } catch (const InputError& e) {
-    fail(L, "apply_force", e.what());
-  }
+  if (!isMissing(p)) local = on.world.body(on.id).xf.applyInverse(vecArg(L, "apply_force", "point", p));
+  addConstantForce(L, "apply_force", on, force, local, 0.0, durationArg(L, "apply_force", d));
   return 0;
 }
 
 int applyTorque(lua_State* L) {
-  sol::stack_object self(L, 1), t(L, 2), d(L, 3);
-  const LuaBody& b = selfBody(L, self, "apply_torque");
-  requireIdle(L, *b.scene, "apply_torque");
-  const BodyId id = liveBody(L, b, "apply_torque");
-  World& w = worldOf(L, b, "apply_torque");
+  const ActedOn on = actedOn(L, "apply_torque");
+  sol::stack_object t(L, 2), d(L, 3);
   const double torque = numberArg(L, "apply_torque", "torque", t);
-  const double duration = durationArg(L, "apply_torque", d);
-  try {
-    w.addForce(std::make_unique<ConstantForce>(Vec2::Zero(), std::nullopt, torque), id, {}, duration);
-  } catch (const InputError& e) {
-    fail(L, "apply_torque", e.what());
-  }
+  addConstantForce(L, "apply_torque", on, Vec2::Zero(), std::nullopt, torque, durationArg(L, "apply_torque", d));
   return 0;
 }
 
 int applyAngularImpulse(lua_State* L) {
-  sol::stack_object self(L, 1), j(L, 2);
-  const LuaBody& b = selfBody(L, self, "apply_angular_impulse");
-  requireIdle(L, *b.scene, "apply_angular_impulse");
-  const BodyId id = liveBody(L, b, "apply_angular_impulse");
-  worldOf(L, b, "apply_angular_impulse").applyAngularImpulse(id, numberArg(L, "apply_angular_impulse", "impulse", j));
+  const ActedOn on = actedOn(L, "apply_angular_impulse");
+  on.world.applyAngularImpulse(on.id, numberArg(L, "apply_angular_impulse", "impulse", sol::stack_object(L, 2)));
   return 0;
 }
 
@@ -138,11 +138,9 @@ int frameHelper(lua_State* L) {
 }
 
 int resetMass(lua_State* L) {
-  const LuaBody& b = selfBody(L, sol::stack_object(L, 1), "reset_mass");
-  requireIdle(L, *b.scene, "reset_mass");
-  const BodyId id = liveBody(L, b, "reset_mass");
+  const ActedOn on = actedOn(L, "reset_mass");
   try {
-    worldOf(L, b, "reset_mass").resetMass(id);
+    on.world.resetMass(on.id);
   } catch (const InputError& e) {
     failCore(L, "reset_mass", e);
   }
@@ -150,10 +148,9 @@ int resetMass(lua_State* L) {
 }
 
 int setTarget(lua_State* L) {
-  const LuaBody& b = selfBody(L, sol::stack_object(L, 1), "set_target");
-  requireIdle(L, *b.scene, "set_target");
-  const BodyId id = liveBody(L, b, "set_target");
-  World& w = worldOf(L, b, "set_target");
+  const ActedOn on = actedOn(L, "set_target");
+  World& w = on.world;
+  const BodyId id = on.id;
   const Options o(L, "set_target", sol::stack_object(L, 2), api::kTargetOptions);
   const Body& body = w.body(id);
   const Vec2 position = o.vec("position", body.position());
