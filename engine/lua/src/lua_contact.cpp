@@ -185,8 +185,13 @@ ContactPusher::ContactPusher(lua_State* L, Scene::Impl& scene) : L_(L), scene_(s
   for (const char* k : kKeys) lua_pushstring(L, k);
 }
 
+// The values pushed since (the contact tables) moved down over the slots: one copy each, where
+// removing the slots one by one rotated everything above them each time (a pre_solve call, which
+// pushes one table: 2 700 instructions of its 20 000, cachegrind).
 void ContactPusher::done() {
-  for (int k = 0; k < kSlots; ++k) lua_remove(L_, base_);
+  const int first = base_ + kSlots, top = lua_gettop(L_);
+  for (int i = first; i <= top; ++i) lua_copy(L_, i, base_ + (i - first));
+  lua_settop(L_, base_ + (top - first));
 }
 
 void pushContact(lua_State* L, Scene::Impl& scene, const ContactView& c, const char* kind) {
