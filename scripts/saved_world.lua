@@ -20,11 +20,13 @@
 -- the origin's position and angle, the centre of mass's velocity, the first shape's density and
 -- material, the type ("static", "kinematic", "dynamic"), the name ("" for none), and `more`, the
 -- options that are not at their defaults: body options (linear_damping, angular_damping,
--- gravity_scale, fixed_rotation, bullet, enabled), the first shape's filter and sensor flag
--- (category, mask, group, sensor), `loop` for a chain, and `shapes`: the body's other shapes as
--- body:add_shape options.
+-- gravity_scale, gravity, sleeping_allowed, fixed_rotation, bullet, enabled), the first shape's
+-- filter, sensor flag and surface (category, mask, group, sensor, tangent_speed,
+-- rolling_resistance), `loop` for a chain, and `shapes`: the body's other shapes as body:add_shape
+-- options.
 -- Joints name their bodies by index in data.bodies (b absent: the world) and a gear its joints by
--- index in data.joints; the other fields are the options of world:add_<kind>. `made_at`: a joint
+-- index in data.joints (a gear of two bodies' angles its bodies, a and b); the other fields are
+-- the options of world:add_<kind>. `made_at`: a joint
 -- is made at the pose of its bodies, which sets its zero angle and anchors, so body b (a when b is
 -- the world) is put at that pose while the joint is made, then back.
 -- Springs and dampers name their bodies by index in data.bodies.
@@ -86,7 +88,8 @@ local function add_old_body(world, b, index)
 end
 
 local BODY_OPTIONS = {"linear_damping", "angular_damping", "gravity_scale", "fixed_rotation", "bullet", "enabled",
-                      "category", "mask", "group", "sensor"}
+                      "category", "mask", "group", "sensor", "gravity", "sleeping_allowed", "tangent_speed",
+                      "rolling_resistance"}
 
 -- Version 3: the first shape by the world's shorthand for it, then the other shapes, then the
 -- velocity (adding a shape moves the centre of mass, which would change the velocity of a body
@@ -151,7 +154,10 @@ local function add_joint(world, row, index, body, joint)
   for key, value in pairs(row) do
     if key ~= "kind" and key ~= "made_at" then args[key] = value end
   end
-  if row.kind == "gear" then
+  if row.kind == "gear" and row.joint_a == nil then  -- a gear of two bodies' angles
+    args.a = body(row.a, where .. ".a")
+    args.b = body(row.b, where .. ".b")
+  elseif row.kind == "gear" then
     args.joint_a = joint(row.joint_a, where .. ".joint_a")
     args.joint_b = joint(row.joint_b, where .. ".joint_b")
   else

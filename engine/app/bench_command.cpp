@@ -193,6 +193,22 @@ int benchCommand(const std::vector<std::string>& argv) {
       std::printf("Lua spring / built-in spring: %.2fx per step; %.2f us per Lua force evaluation\n", ratio, per_call_us);
     }
   }
+  // The cost of a Lua function the step calls (a pre_solve function, ShouldCollide): the same
+  // scene with and without it.
+  const auto perCall = [&](const std::string& with_name, const char* what) {
+    const auto with = find(with_name.c_str()), without = find((with_name + "_off").c_str());
+    if (with == results.end() || without == results.end()) return;
+    const double ms_with = with->num("ms_median").value_or(NAN), ms_without = without->num("ms_median").value_or(NAN);
+    const double per_call_us = 1000.0 * (ms_with - ms_without) / std::max(1.0, with->num("lua_calls_per_step").value_or(1));
+    if (json) {
+      std::printf("{\"engine\": \"rigidlab\", \"ratio\": \"%s/%s_off\", \"value\": %s, \"%s_call_us\": %s}\n", with_name.c_str(),
+                  with_name.c_str(), fmt(ms_with / ms_without).c_str(), with_name.c_str(), fmt(per_call_us).c_str());
+    } else {
+      std::printf("%s / none: %.2fx per step; %.2f us per %s call\n", with_name.c_str(), ms_with / ms_without, per_call_us, what);
+    }
+  };
+  perCall("pre_solve", "pre_solve");
+  perCall("should_collide", "ShouldCollide");
   return kExitOk;
 }
 

@@ -66,7 +66,7 @@ function vec2(x, y) end
 ---@field id integer 1, 2, 3, ... in creation order, never reused (read only)
 ---@field center rigidlab.Vec2 world centre of mass (read only)
 ---@field local_center rigidlab.Vec2 centre of mass in body coordinates (read only)
----@field inertia number kg·m² about the centre of mass (read only)
+---@field inertia number kg·m² about the centre of mass; writing one replaces the shapes' until they change (body:reset_mass) (read/write)
 ---@field density number kg/m²: the shapes' density if they share one, else mass / area (read only)
 ---@field shape "circle"|"polygon"|"capsule"|"segment"|"chain_segment"|nil a one-shape body's kind; an error on a compound body (read only)
 ---@field radius number|nil a one-shape circle's or capsule's radius (read only)
@@ -75,7 +75,10 @@ function vec2(x, y) end
 ---@field removed boolean true once world:remove(body) was called (read only)
 ---@field linear_damping number 1/s, implicit: never flips a velocity (read/write)
 ---@field angular_damping number 1/s (read/write)
----@field gravity_scale number multiplies the world's gravity for this body (read/write)
+---@field gravity_scale number multiplies the world's gravity (or the body's own) for this body (read/write)
+---@field gravity rigidlab.Vec2|nil the body's own gravity, m/s², in place of the world's (still times gravity_scale); nil: the world's (read/write)
+---@field sleeping_allowed boolean false: the body never falls asleep, nor lets its island sleep (read/write)
+---@field world rigidlab.World the world the body is in (read only)
 ---@field fixed_rotation boolean the body never turns (read/write)
 ---@field bullet boolean also swept against dynamic bodies (read/write)
 ---@field enabled boolean false: out of the simulation, kept as it is (read/write)
@@ -96,6 +99,43 @@ function Body:apply_impulse(impulse, point) end
 ---@param point? rigidlab.VecLike world point, default the centre of mass
 ---@param duration? number seconds; default: the next step only
 function Body:apply_force(force, point, duration) end
+
+---Applies a constant torque (counter-clockwise > 0).
+---@param torque number N·m
+---@param duration? number seconds; default: the next step only
+function Body:apply_torque(torque, duration) end
+
+---Changes the angular momentum at once: Δω = j / I.
+---@param impulse number N·m·s
+function Body:apply_angular_impulse(impulse) end
+
+---A point given in the body's coordinates, in world coordinates (LÖVE's getWorldPoint).
+---@param point rigidlab.VecLike
+---@return rigidlab.Vec2
+function Body:world_point(point) end
+
+---A world point in the body's coordinates (LÖVE's getLocalPoint).
+---@param point rigidlab.VecLike
+---@return rigidlab.Vec2
+function Body:local_point(point) end
+
+---A direction given in the body's coordinates, in world coordinates (turned, not moved).
+---@param vector rigidlab.VecLike
+---@return rigidlab.Vec2
+function Body:world_vector(vector) end
+
+---A world direction in the body's coordinates.
+---@param vector rigidlab.VecLike
+---@return rigidlab.Vec2
+function Body:local_vector(vector) end
+
+---The velocity of the body's material point at a world point: v + ω × (p − center).
+---@param point rigidlab.VecLike world point
+---@return rigidlab.Vec2
+function Body:velocity_at(point) end
+
+---The mass, centre of mass and inertia from the shapes again (after body.inertia was written).
+function Body:reset_mass() end
 
 ---Adds a shape; the mass, centre of mass and inertia become the sums over the shapes.
 ---@param options rigidlab.AddShapeOptions
@@ -118,14 +158,21 @@ function Body:contacts() end
 ---@class rigidlab.Shape
 ---@field kind "circle"|"polygon"|"capsule"|"segment"|"chain_segment" (read only)
 ---@field body rigidlab.Body (read only)
----@field radius number|nil circles and capsules (read only)
----@field center rigidlab.Vec2 centroid, body coordinates (read only)
----@field vertices rigidlab.Vec2[]|nil polygons: corners, counter-clockwise, body coordinates (read only)
----@field a rigidlab.Vec2|nil capsules, segments, chain segments: first point, body coordinates (read only)
----@field b rigidlab.Vec2|nil second point (read only)
+---@field radius number|nil circles and capsules; writing it changes the shape, and its body's mass (read/write)
+---@field center rigidlab.Vec2 centroid, body coordinates; a circle's may be written, the others' follow their points (read/write)
+---@field vertices rigidlab.Vec2[]|nil polygons: corners, counter-clockwise, body coordinates; writable as the polygon option (read/write)
+---@field a rigidlab.Vec2|nil capsules, segments, chain segments: first point, body coordinates (read/write)
+---@field b rigidlab.Vec2|nil second point (read/write)
+---@field ghost1 rigidlab.Vec2|nil chain segments: the chain's point before a (LÖVE's previous vertex) (read/write)
+---@field ghost2 rigidlab.Vec2|nil chain segments: the chain's point after b (LÖVE's next vertex) (read/write)
 ---@field density number|nil kg/m²; nil for segments (read/write)
 ---@field mass number kg, 0 for segments (read only)
 ---@field area number m², 0 for segments (read only)
+---@field inertia number kg·m² about the shape's own centroid, 0 for segments (read only)
+---@field bounds {lower: rigidlab.Vec2, upper: rigidlab.Vec2} the world box around the shape now (read only)
+---@field tangent_speed number m/s: the surface moves along itself, clockwise around the shape (a conveyor belt); contacts' speeds add (read/write)
+---@field rolling_resistance number ≥ 0, as Box2D v3: a contact resists turning with at most c · r · N (r: the larger radius) (read/write)
+---@field user_data any any Lua value, kept with the shape; readable after it was removed (read/write)
 ---@field restitution number 0..1 (read/write)
 ---@field friction number (read/write)
 ---@field static_friction number (read/write)
@@ -144,6 +191,24 @@ local Shape = {}
 ---Removes the shape from its body (no-op if already removed); the body's mass is recomputed.
 function Shape:remove() end
 
+---Whether the world point lies in the shape (segments contain none).
+---@param point rigidlab.VecLike
+---@return boolean
+function Shape:test_point(point) end
+
+---The shape alone: where the segment from → to enters it, as world:ray_cast reports hits, or nil.
+---@param options {from: rigidlab.VecLike, to: rigidlab.VecLike}
+---@return rigidlab.QueryHit|nil
+function Shape:ray_cast(options) end
+
+---The distance between this shape's surface and another's (0 when they overlap), and the closest
+---point on each, world coordinates.
+---@param other rigidlab.Shape
+---@return number distance
+---@return rigidlab.Vec2 on_this
+---@return rigidlab.Vec2 on_other
+function Shape:distance(other) end
+
 ---A joint handle (world:add_revolute and the other joint functions return one). Which fields a
 ---joint has depends on its kind; a field of another kind is an error.
 ---@class rigidlab.Joint
@@ -154,6 +219,14 @@ function Shape:remove() end
 ---@field collide_connected boolean may a and b collide (read/write)
 ---@field break_force number N; math.huge: never breaks (read/write)
 ---@field break_torque number N·m (read/write)
+---@field user_data any any Lua value, kept with the joint; readable after it broke (read/write)
+---@field local_anchor_a rigidlab.Vec2 the anchor on a in a's coordinates (read only)
+---@field local_anchor_b rigidlab.Vec2 the anchor on b in b's coordinates (the world's when b is nil) (read only)
+---@field axis rigidlab.Vec2 prismatic, wheel: the axis now, unit, world (read only)
+---@field motor_torque number revolute, wheel: the motor's torque in the last step, N·m (read only)
+---@field motor_force number prismatic: the motor's force in the last step, N (read only)
+---@field length_a number pulley: a's rope now, m (read only)
+---@field length_b number pulley: b's rope now, m (read only)
 ---@field angle number revolute, wheel, weld: b's angle relative to a since creation (a's own when b is nil), rad (read only)
 ---@field speed number revolute, wheel: relative angular speed, rad/s; prismatic: along the axis, m/s (read only)
 ---@field translation number prismatic, wheel: along the axis, m; distance: current length, m (read only)
@@ -175,7 +248,7 @@ function Shape:remove() end
 ---@field enable_spring boolean revolute, prismatic, wheel, distance (read/write)
 ---@field spring_hertz number Hz; writing > 0 enables the spring, 0 disables it (read/write)
 ---@field spring_damping number damping ratio (read/write)
----@field length number distance: rest length, m (read only)
+---@field length number distance: rest length, m; pulley: the constant length_a + ratio · length_b (read/write)
 ---@field min_length number distance, m (read/write)
 ---@field max_length number distance, m; math.huge: none (read/write)
 ---@field max_spring_force number distance, N (read/write)
@@ -194,7 +267,7 @@ function Shape:remove() end
 ---@field motor_damping number motor: damping ratio (read/write)
 ---@field ground_a rigidlab.Vec2 pulley: fixed point of a's rope (read only)
 ---@field ground_b rigidlab.Vec2 pulley: fixed point of b's rope (read only)
----@field ratio number pulley, gear (read only)
+---@field ratio number pulley, gear; written, the coupling holds from where the bodies are (read/write)
 ---@field joint_a rigidlab.Joint|nil gear: the first geared joint (read only)
 ---@field joint_b rigidlab.Joint|nil gear: the second geared joint (read only)
 local Joint = {}
@@ -241,6 +314,8 @@ local Snapshot = {}
 ---@field enabled? boolean default true
 ---@field user_data? any any Lua value, kept with the body
 ---@field awake? boolean default true; false: created asleep (a dynamic body at rest, in a world that sleeps)
+---@field gravity? rigidlab.VecLike the body's own gravity, m/s², in place of the world's; default: the world's
+---@field sleeping_allowed? boolean default true; false: it never sleeps
 
 ---The options of a shape: body:add_shape and, for their one shape, the add_* body functions.
 ---@class rigidlab.ShapeOptions
@@ -252,6 +327,8 @@ local Snapshot = {}
 ---@field category? integer 64-bit category bits, default 1 (a float with a whole value is taken too)
 ---@field mask? integer 64-bit bits of the categories it collides with, default -1 (all)
 ---@field group? integer 32-bit: same positive group always collides, same negative never; default 0
+---@field tangent_speed? number m/s, default 0: the surface moves along itself (a conveyor), clockwise around the shape
+---@field rolling_resistance? number ≥ 0, default 0 (Box2D v3's rolling resistance; circles and capsules)
 ---@field contact_events? boolean default false: report its contacts' begin and end
 ---@field hit_events? boolean default false (true when hit_speed is given): report impacts
 ---@field hit_speed? number m/s ≥ 0, default 1: the closing speed of a hit
@@ -299,6 +376,7 @@ local Snapshot = {}
 ---@field b? rigidlab.VecLike capsule, segment
 ---@field offset? rigidlab.VecLike where the shape's origin lies in the body, default {0, 0}
 ---@field angle? number how far the shape is turned in the body, default 0
+---@field user_data? any the shape's (the add_* body functions' user_data is the body's)
 
 ---@class rigidlab.TargetOptions
 ---@field position? rigidlab.VecLike the body origin to reach, default where it is
@@ -326,11 +404,19 @@ local Snapshot = {}
 ---@field break_force? number N, default math.huge (never)
 ---@field break_torque? number N·m, default math.huge
 ---@field name? string for world:find_joint
+---@field user_data? any any Lua value, kept with the joint
+
+---Every kind that takes an anchor (anchor, or anchor_a and anchor_b) takes instead each body's own
+---anchor in its coordinates, local_anchor_a and local_anchor_b (Box2D's and LÖVE's form; b's is a
+---world point when b is nil). The two forms cannot be mixed. A missing one is where the other is
+---now (a distance or pulley joint's: the body's centre of mass).
 
 ---A pin: the bodies turn about `anchor`. Giving lower_angle and upper_angle enables the limit;
 ---motor_speed (with max_motor_torque) the motor; spring_hertz > 0 the spring.
 ---@class rigidlab.RevoluteOptions: rigidlab.JointOptions
 ---@field a rigidlab.Body
+---@field local_anchor_a? rigidlab.VecLike a's anchor, a's coordinates (instead of the world anchors)
+---@field local_anchor_b? rigidlab.VecLike b's anchor, b's coordinates (the world's when b is nil)
 ---@field b? rigidlab.Body default: the world
 ---@field anchor rigidlab.VecLike world point
 ---@field enable_limit? boolean overrides what the limit options imply
@@ -347,6 +433,8 @@ local Snapshot = {}
 ---A slider: b moves along `axis` (fixed in a; in the world when b is nil) without turning.
 ---@class rigidlab.PrismaticOptions: rigidlab.JointOptions
 ---@field a rigidlab.Body
+---@field local_anchor_a? rigidlab.VecLike a's anchor, a's coordinates (instead of the world anchors)
+---@field local_anchor_b? rigidlab.VecLike b's anchor, b's coordinates (the world's when b is nil)
 ---@field b? rigidlab.Body
 ---@field anchor rigidlab.VecLike world point
 ---@field axis rigidlab.VecLike direction, not zero
@@ -365,6 +453,8 @@ local Snapshot = {}
 ---max_length alone) or are held by a spring.
 ---@class rigidlab.DistanceOptions: rigidlab.JointOptions
 ---@field a rigidlab.Body
+---@field local_anchor_a? rigidlab.VecLike a's anchor, a's coordinates (instead of the world anchors)
+---@field local_anchor_b? rigidlab.VecLike b's anchor, b's coordinates (the world's when b is nil)
 ---@field b? rigidlab.Body
 ---@field anchor_a? rigidlab.VecLike world point on a, default its centre of mass
 ---@field anchor_b? rigidlab.VecLike world point on b, default its centre of mass (required when b is nil)
@@ -379,6 +469,8 @@ local Snapshot = {}
 
 ---@class rigidlab.WeldOptions: rigidlab.JointOptions
 ---@field a rigidlab.Body
+---@field local_anchor_a? rigidlab.VecLike a's anchor, a's coordinates (instead of the world anchors)
+---@field local_anchor_b? rigidlab.VecLike b's anchor, b's coordinates (the world's when b is nil)
 ---@field b? rigidlab.Body
 ---@field anchor rigidlab.VecLike world point
 ---@field linear_hertz? number Hz, 0 (default): rigid
@@ -391,6 +483,8 @@ local Snapshot = {}
 ---the wheel slides freely along the axis.
 ---@class rigidlab.WheelOptions: rigidlab.JointOptions
 ---@field a rigidlab.Body
+---@field local_anchor_a? rigidlab.VecLike a's anchor, a's coordinates (instead of the world anchors)
+---@field local_anchor_b? rigidlab.VecLike b's anchor, b's coordinates (the world's when b is nil)
 ---@field b? rigidlab.Body
 ---@field anchor rigidlab.VecLike world point
 ---@field axis rigidlab.VecLike suspension direction, not zero
@@ -408,6 +502,8 @@ local Snapshot = {}
 ---Drives b towards a pose relative to a (the world when b is nil) with limited force and torque.
 ---@class rigidlab.MotorJointOptions: rigidlab.JointOptions
 ---@field a rigidlab.Body
+---@field local_anchor_a? rigidlab.VecLike the target in a's coordinates (the linear offset)
+---@field local_anchor_b? rigidlab.VecLike the driven point in b's coordinates
 ---@field b? rigidlab.Body
 ---@field anchor? rigidlab.VecLike the driven point (world), default the driven body's centre of mass
 ---@field linear_offset? rigidlab.VecLike target of the driven point in a's frame; default where it is
@@ -422,6 +518,8 @@ local Snapshot = {}
 ---Top-down friction: resists relative motion up to max_force and max_torque.
 ---@class rigidlab.FrictionJointOptions: rigidlab.JointOptions
 ---@field a rigidlab.Body
+---@field local_anchor_a? rigidlab.VecLike a's anchor, a's coordinates (instead of the world anchors)
+---@field local_anchor_b? rigidlab.VecLike b's anchor, b's coordinates (the world's when b is nil)
 ---@field b? rigidlab.Body
 ---@field anchor? rigidlab.VecLike default the centre of mass of b (of a when b is nil)
 ---@field max_force? number N
@@ -430,6 +528,8 @@ local Snapshot = {}
 ---Two bodies on a rope over two fixed points: length_a + ratio · length_b stays constant.
 ---@class rigidlab.PulleyOptions: rigidlab.JointOptions
 ---@field a rigidlab.Body
+---@field local_anchor_a? rigidlab.VecLike a's anchor, a's coordinates (instead of the world anchors)
+---@field local_anchor_b? rigidlab.VecLike b's anchor, b's coordinates (the world's when b is nil)
 ---@field b rigidlab.Body
 ---@field anchor_a? rigidlab.VecLike world, default a's centre of mass
 ---@field anchor_b? rigidlab.VecLike world, default b's centre of mass
@@ -437,10 +537,13 @@ local Snapshot = {}
 ---@field ground_b rigidlab.VecLike
 ---@field ratio? number > 0, default 1
 
----Couples two revolute or prismatic joints: coordinate_a + ratio · coordinate_b stays constant.
+---Couples two revolute or prismatic joints: coordinate_a + ratio · coordinate_b stays constant;
+---or two bodies' angles (a, b): angle_a + ratio · angle_b stays constant (Chipmunk's gear).
 ---@class rigidlab.GearOptions: rigidlab.JointOptions
----@field joint_a rigidlab.Joint
----@field joint_b rigidlab.Joint
+---@field joint_a? rigidlab.Joint
+---@field joint_b? rigidlab.Joint
+---@field a? rigidlab.Body instead of the joints
+---@field b? rigidlab.Body
 ---@field ratio? number not 0, default 1
 
 ---The state a Lua force sees, at the integrator stage being evaluated. Only valid during the call.
@@ -474,6 +577,7 @@ local Snapshot = {}
 ---@field time number simulated time, s (read only)
 ---@field step_count integer steps taken (read only)
 ---@field title string the scene's title (read only)
+---@field locked boolean true while the world steps (inside a force, a pre_solve function, ShouldCollide) (read only)
 ---@field controls table<string, number> the scene's sliders by name (scene.controls): what the sandbox's slider says, the default headless; `world.controls.size = 0.5` sets one within its range; a button has no value (OnControl)
 local World = {}
 
@@ -762,9 +866,24 @@ function Exact(t) end
 ---@field point rigidlab.Vec2 world; the middle of the contact's points
 ---@field normal rigidlab.Vec2 unit, from a to b
 ---@field approach_speed number m/s, > 0 approaching: events at the start of the step, otherwise now
----@field normal_impulse number N·s the step applied (0 in pre_solve)
+---@field normal_impulse number N·s the step applied (in pre_solve: the last step's, which the solve starts from)
 ---@field tangent_impulse number N·s
+---@field points rigidlab.ContactPoint[] the manifold's points (one or two)
+---@field friction number the contact's dynamic friction (the shapes' mix); writable in pre_solve, for that step (also sets static_friction unless that is written)
+---@field static_friction number writable in pre_solve, for that step
+---@field restitution number 0..1; writable in pre_solve, for that step
+---@field tangent_speed number m/s, the shapes' tangent speeds added; writable in pre_solve, for that step
+---@field rolling_resistance number the bound of the rolling torque per unit of normal force, m
+---@field touching boolean false for an end event
+---@field enabled boolean|nil in pre_solve: writing false disables the contact for the step (as returning false does)
 ---@field kind "begin"|"end"|"hit"|nil world:contact_events() only
+
+---A point of a contact's manifold.
+---@class rigidlab.ContactPoint
+---@field point rigidlab.Vec2 world
+---@field separation number m, < 0: overlap
+---@field normal_impulse number N·s the step applied at this point
+---@field tangent_impulse number N·s
 
 ---A hit of world:ray_cast, ray_cast_all or shape_cast.
 ---@class rigidlab.QueryHit
@@ -823,6 +942,11 @@ function Exact(t) end
 ---This step's contact events (begin, end, hit), by shape pair.
 ---@return rigidlab.Contact[]
 function World:contact_events() end
+
+---Every touching contact now, by shape pair: a table per contact, so its cost grows with the
+---contacts (a pile of 1 000 boxes: 1 000 tables and their points each call).
+---@return rigidlab.Contact[]
+function World:contacts() end
 
 ---The closest hit of the segment from → to, or nil.
 ---@param options rigidlab.RayCastOptions
@@ -886,5 +1010,14 @@ function OnSensorBegin(world, sensor, visitor) end
 function OnSensorEnd(world, sensor, visitor) end
 
 ---@param world rigidlab.World
----@param joint rigidlab.Joint removed by the core when it broke: kind, broken and removed are readable
+---@param joint rigidlab.Joint removed by the core when it broke: kind, broken, removed and user_data are readable
 function OnJointBreak(world, joint) end
+
+---Optional collision filter, called during the step once for each pair of shapes whose boxes
+---begin to overlap (and that their category, mask, group, sensors and joints let collide): false
+---keeps them from colliding until their boxes part. Costs a call per new pair; the world may not
+---be edited inside it.
+---@param shape_a rigidlab.Shape
+---@param shape_b rigidlab.Shape
+---@return boolean|nil
+function ShouldCollide(shape_a, shape_b) end

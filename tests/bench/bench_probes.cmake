@@ -10,6 +10,13 @@ function(metric scene key)
   set(value "${value}" PARENT_SCOPE)
 endfunction()
 
+# The Lua calls per step of `steps` steps of a scene.
+function(expect_lua_calls scene steps expected what)
+  run(0 bench ${scene} --steps ${steps} --reps 1 --json)
+  string(JSON value GET "${out}" lua_calls_per_step)
+  expect_equal("${scene}: Lua calls per step (${what})" "${value}" ${expected})
+endfunction()
+
 run(0 bench --help)
 expect_match("bench --help" "${out}" "  queries ")
 expect_match("bench --help" "${out}" "  events ")
@@ -32,6 +39,15 @@ endif()
 # One step: the 1000 balls start 1 mm into the floor, 1000 begin events, each given to the hook.
 metric(events begin_events_per_step)
 expect_equal("events: begin events" "${value}" 1000)
-run(0 bench events --steps 1 --reps 1 --json)
-string(JSON value GET "${out}" lua_calls_per_step)
-expect_equal("events: Lua calls (1000 OnContactBegin and OnStep)" "${value}" 1001)
+expect_lua_calls(events 1 1001 "1000 OnContactBegin and OnStep")
+
+# One step of 1000 resting contacts: a call of the floor's pre_solve function for each, none
+# without it (bench_command.cpp prints the difference of their step times per call).
+expect_lua_calls(pre_solve 1 1000 "one per contact")
+expect_lua_calls(pre_solve_off 1 0 "none")
+
+# Two steps of the balls put onto the floor and off it: ShouldCollide is asked once per ball when
+# its box begins to overlap the floor's (the first step; on the second the balls are away), besides
+# the two OnStep calls; none without the hook.
+expect_lua_calls(should_collide 2 501 "(1000 ShouldCollide + 2 OnStep) / 2")
+expect_lua_calls(should_collide_off 2 1 "OnStep")

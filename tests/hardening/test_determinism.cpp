@@ -73,6 +73,8 @@ const Golden kGolden[] = {
     {"scripts/scenes/newtons_cradle.lua", "82b92320d548fa28"},
     {"scripts/scenes/platformer.lua", "dc7dc666cd2912eb"},
     {"scripts/scenes/playground.lua", "a719ff151c0b3947"},
+    {"scripts/scenes/port_box2d.lua", "f4152445b91181d8"},
+    {"scripts/scenes/port_love.lua", "722d012ed3edd9ac"},
     {"scripts/scenes/pulley.lua", "6aabbae78b85b5c3"},
     {"scripts/scenes/pyramid.lua", "70b1f0f4ef3b7c1f"},
     {"scripts/scenes/ragdoll_drop.lua", "8d181899b471d818"},

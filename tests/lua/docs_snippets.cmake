@@ -3,7 +3,8 @@
 # be a line of the scene its section names (`scripts/scenes/<name>.lua`, first mention), leading
 # and trailing blanks aside, so the worked examples cannot drift from the scenes they show.
 # README.md's sections that name a scene are held to the same rule (its other Lua blocks are
-# complete examples of their own: the first scene, the game-scripting sketch).
+# complete examples of their own: the first scene, the game-scripting sketch), and so are
+# docs/porting.md's worked ports.
 cmake_policy(SET CMP0007 NEW)  # keep empty lines as list elements
 
 # The lines of a file as a list, ';' replaced by '<semicolon>' (a CMake list separator).
@@ -22,7 +23,7 @@ set(checked 0)
 foreach(line IN LISTS lines)
   if(line MATCHES "^## ")
     set(scene "")
-  elseif(NOT in_code AND scene STREQUAL "" AND line MATCHES "`(scripts/scenes/[a-z_]+\\.lua)`")
+  elseif(NOT in_code AND scene STREQUAL "" AND line MATCHES "`(scripts/scenes/[a-z0-9_]+\\.lua)`")
     set(scene ${CMAKE_MATCH_1})
     read_lines(${SOURCE}/${scene} scene_lines)
     set(stripped "")
@@ -59,3 +60,5 @@ endfunction()
 
 check_excerpts(docs/game-scripting.md FALSE 30)
 check_excerpts(README.md TRUE 5)
+# docs/porting.md's worked ports quote their scenes (the LÖVE and Box2D code they port comes first).
+check_excerpts(docs/porting.md TRUE 20)

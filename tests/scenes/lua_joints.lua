@@ -158,7 +158,7 @@ function PopulateWorld(world)
   refused("a revolute option on a prismatic", "add_prismatic: unknown option 'lower_angle' (did you mean 'lower'?)",
           world.add_prismatic, world, { a = b.slider, anchor = {0, 0}, axis = {1, 0}, lower_angle = 1 })
   refused("a field of another kind", "revolute joint: has no field 'lower' (did you mean 'lower_angle'?)", function() return j.pin.lower end)
-  refused("a read-only field", "joint.ratio: is read-only", function() j.gear.ratio = 3 end)
+  refused("a read-only field", "joint.joint_a: is read-only", function() j.gear.joint_a = j.pin end)
   refused("a write past the bound", "joint.lower_angle: lower_angle (1) must not exceed upper_angle (0.5)",
           function() j.limit.lower_angle = 1 end)
   refused("break_force 0", "joint.break_force: must be > 0, got 0", function() j.pin.break_force = 0 end)

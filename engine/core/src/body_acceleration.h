@@ -1,5 +1,6 @@
 // A body's acceleration at a stage of the integrator, as integrator.cpp and mechanism_step.cpp both
-// read it: from its accumulated wrench, a = F/m + s g and α = τ/I (s the body's gravity scale),
+// read it: from its accumulated wrench, a = F/m + s g and α = τ/I (s the body's gravity scale, g
+// its own gravity if it has one, BodyDef::gravity, else the world's),
 // and, when its damping is evaluated in the stages (RK4), −c v and −c_ω ω at the stage's velocity:
 // the damped body v' = a − c v is then a smooth ODE whose order RK4 keeps.
 #pragma once
@@ -15,7 +16,7 @@ struct Accel {
 };
 
 [[gnu::always_inline]] inline Accel bodyAcceleration(const Body& b, const Vec2& gravity, const Wrench& wr) {
-  return {wr.force * b.inv_mass + gravity * b.gravity_scale, wr.torque * b.inv_inertia};
+  return {wr.force * b.inv_mass + b.gravityOr(gravity) * b.gravity_scale, wr.torque * b.inv_inertia};
 }
 
 // Beyond h c = 2.5 RK4 multiplies a damped velocity by more than 1 per step (its factor is the

@@ -208,13 +208,50 @@ void verifyShapeViews(const WorldImpl& w, bool joints) {
 }
 #endif
 
+// The collision filter (World::setShouldCollide): each pair that the built-in filters let collide
+// (two bodies, no sensor, Filter, joints: the narrow phase's rules) is asked once, when it first
+// appears among the pairs, that is when its boxes begin to overlap; the answers of the pairs that
+// still overlap are kept (WorldImpl::filter_decisions, ascending like the pairs, so one merge pass
+// finds them). Pairs answered false are dropped until their boxes part. Costs nothing without a
+// filter; with one, a merge over the pairs each step and a call per new pair.
+void askShouldCollide(WorldImpl& w) {
+  auto& last = w.filter_decisions;
+  if (!w.should_collide) {
+    last.clear();
+    return;
+  }
+  auto& next = w.filter_scratch;
+  next.clear();
+  const bool joints = w.joints.size() > w.free_joints.size();
+  size_t j = 0, kept = 0;
+  for (const BodyPair& pair : w.pairs) {
+    const BodyShape &sa = w.shapes[pair.a], &sb = w.shapes[pair.b];
+    const bool left_out = sa.body == sb.body || sa.sensor || sb.sensor || !shouldCollide(sa.filter, sb.filter) ||
+                          (joints && w.jointBlocksCollision(sa.body.index, sb.body.index));
+    bool collide = true;
+    if (!left_out) {
+      while (j < last.size() && (last[j].a < pair.a || (last[j].a == pair.a && last[j].b < pair.b))) ++j;
+      const bool known = j < last.size() && last[j].a == pair.a && last[j].b == pair.b &&
+                         last[j].generation_a == sa.id.generation && last[j].generation_b == sb.id.generation;
+      collide = known ? last[j].collide : w.should_collide(sa.id, sb.id);
+      next.push_back({pair.a, pair.b, sa.id.generation, sb.id.generation, collide});
+    }
+    if (collide) w.pairs[kept++] = pair;
+  }
+  w.pairs.resize(kept);
+  last.swap(next);
+}
+
 }  // namespace
+
+void World::setShouldCollide(ShouldCollideFn callback) { impl_->should_collide = std::move(callback); }
 
 void findPairs(WorldImpl& w) {
   const size_t n = w.shapes.size();
   if (n < 2) {
     w.pairs.clear();
     w.pair_cache.valid = false;
+    w.filter_decisions.clear();
     return;
   }
   w.proxies.resize(n);
@@ -305,6 +342,7 @@ void findPairs(WorldImpl& w) {
     w.pair_cache.valid = false;
     throw InputError("bodies", overflowMessage(w, overflow, bodies, limit));
   }
+  if (w.should_collide || !w.filter_decisions.empty()) askShouldCollide(w);
 }
 
 }  // namespace rigidlab

@@ -83,10 +83,25 @@ struct SolverPoint {
   double pn, pt;              // accumulated impulses
 };
 
+// A contact's surface effects (ShapeDef::tangent_speed, rolling_resistance), for the contacts that
+// have them: kept out of the contacts themselves, which piles stream through every pass.
+struct ContactSurface {
+  double tangent_speed = 0.0;       // the relative tangent velocity friction aims for [m/s]
+  double rolling_resistance = 0.0;  // the rolling torque's bound per unit of normal force [m]
+  bool any() const { return tangent_speed != 0.0 || rolling_resistance > 0.0; }
+};
+
+// Sequential impulses' working copy of a contact's surface effects (SolverContact::surface).
+struct SolverSurface {
+  double tangent_speed, rolling, rolling_mass, rolling_impulse;
+};
+constexpr uint32_t kNoSurface = UINT32_MAX;
+
 struct SolverContact {
   uint32_t a, b;
-  int count;
+  uint8_t count;
   bool block;
+  uint32_t surface;  // index into WorldImpl::solver_surfaces, or kNoSurface (in what was padding)
   double nx, ny;
   double k11, k12, k22, i11, i12, i22;  // K and K⁻¹ of a block contact
   SolverPoint p[2];
@@ -143,6 +158,7 @@ struct SoftLanes {
   enum : uint8_t { kNoBlock, kSomeBlocks, kAllBlock };
   uint8_t blocks;       // how many lanes are block contacts (empty lanes count as block)
   uint8_t points;       // the most contact points of any lane
+  uint8_t surface;      // some lane has surface effects: its group's SoftSurfaceLanes (in what was padding)
   int64_t acted[L];     // not 0: some impulse was non-zero during the step (a vector mask, or'ed per pass)
   double nx[L], ny[L];
   int64_t stiff[L];     // −1: the stiffer softness (a static or sleeping body), 0: the soft one
@@ -154,6 +170,13 @@ struct SoftLanes {
   double inv_det[L];                   // block contacts: 1/det K (the relax pass's matrix)
   double tangent_mass[2][L], friction[2][L];
   double pn[2][L], pt[2][L];           // impulses of the current sub-step, warm-started [N·s]
+};
+
+// Per group of SoftLanes, when some soft contact has surface effects (ContactSurface): the lanes'
+// tangent speeds, rolling resistances (bound per unit normal impulse [m]), rolling masses
+// 1/(1/I_A + 1/I_B) and the rolling impulse of the current sub-step; zero in the other lanes.
+struct SoftSurfaceLanes {
+  double tangent_speed[kSoftLanes], rolling[kSoftLanes], rolling_mass[kSoftLanes], rolling_impulse[kSoftLanes];
 };
 
 // Per group of SoftLanes: the impulses applied during the step [N·s], for reports. Lanes side by

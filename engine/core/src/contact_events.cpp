@@ -12,6 +12,14 @@
 namespace rigidlab {
 namespace {
 
+void copySurface(const Contact& c, const ContactSurface& surface, World::ContactEvent& e) {
+  e.friction = c.friction;
+  e.static_friction = c.static_friction;
+  e.restitution = c.restitution;
+  e.tangent_speed = surface.tangent_speed;
+  e.rolling_resistance = surface.rolling_resistance;
+}
+
 World::ContactEvent eventOf(const WorldImpl& w, const Contact& c, World::ContactEvent::Kind kind) {
   World::ContactEvent e;
   e.kind = kind;
@@ -21,8 +29,12 @@ World::ContactEvent eventOf(const WorldImpl& w, const Contact& c, World::Contact
   e.b = w.bodies[c.b].id;
   e.normal = c.normal;
   e.count = c.count;
-  for (int i = 0; i < c.count; ++i) e.points[i] = c.points[i].point;
+  for (int i = 0; i < c.count; ++i) {
+    e.points[i] = c.points[i].point;
+    e.separations[i] = c.points[i].separation;
+  }
   e.point = c.count == 2 ? Vec2(0.5 * (e.points[0] + e.points[1])) : e.points[0];
+  copySurface(c, w.surfaceOf(c), e);
   return e;
 }
 
@@ -64,8 +76,12 @@ void finishContactEvents(WorldImpl& w) {
     if (w.event_contacts[i] == UINT32_MAX) continue;
     const Contact& c = w.contacts[w.event_contacts[i]];
     World::ContactEvent& e = w.contact_events[i];
+    // The surface the solve used (after the pre-solve callback).
+    copySurface(c, w.contact_surfaces.empty() ? w.surfaceOf(c) : w.contact_surfaces[w.event_contacts[i]], e);
     e.normal_impulse = e.tangent_impulse = 0.0;
     for (int p = 0; p < c.count; ++p) {
+      e.normal_impulses[p] = c.points[p].step_normal_impulse;
+      e.tangent_impulses[p] = c.points[p].step_tangent_impulse;
       e.normal_impulse += c.points[p].step_normal_impulse;
       e.tangent_impulse += c.points[p].step_tangent_impulse;
     }
@@ -127,6 +143,7 @@ void WorldImpl::countShape(const BodyShape& s, int sign) {
   add(event_shapes, s.contact_events || s.hit_events);
   add(presolve_shapes, s.pre_solve || s.one_way.has_value());
   add(sensor_shapes, s.sensor);
+  add(surface_shapes, s.tangent_speed != 0.0 || s.rolling_resistance > 0.0);
 }
 
 const std::vector<World::ContactEvent>& World::contactEvents() const { return impl_->contact_events; }

@@ -49,7 +49,7 @@ double restingWeight(Integrator integrator) {
 
 namespace {
 
-void prepare(WorldImpl& w, Contact& c, SolverPrepared& out) {
+void prepare(WorldImpl& w, Contact& c, SolverPrepared& out, double tangent_speed) {
   const double resting_weight = restingWeight(w.def.integrator);
   const Body& a = w.bodies[c.a];
   const Body& b = w.bodies[c.b];
@@ -87,7 +87,8 @@ void prepare(WorldImpl& w, Contact& c, SolverPrepared& out) {
     // Relative velocity of the point at the start of the step.
     const Vec2 v_start = w.start_velocity[c.b] + cross(w.start_angular_velocity[c.b], rb) - w.start_velocity[c.a] -
                          cross(w.start_angular_velocity[c.a], ra);
-    out.friction[i] = std::abs(v_start.dot(t)) < w.def.static_friction_speed ? c.static_friction : c.friction;
+    // The slip is measured against the surface's own motion (ContactSurface::tangent_speed, else 0).
+    out.friction[i] = std::abs(v_start.dot(t) - tangent_speed) < w.def.static_friction_speed ? c.static_friction : c.friction;
     if (!w.def.warm_starting) {
       cp.normal_impulse = 0.0;
       cp.tangent_impulse = 0.0;
@@ -163,7 +164,7 @@ inline double relative(const SolverBody& a, const SolverBody& b, const SolverPoi
 // The normal impulses of a two-point contact as one 2×2 linear complementarity problem
 // (E. Catto, Box2D 2.4 b2ContactSolver, block solver): find x ≥ 0 with v_n = K (x − a) + v_n0 ≥ 0
 // and x_i v_n,i = 0, trying the four cases (both points pushing, one, the other, none).
-inline void solveBlock(SolverBody& a, SolverBody& b, SolverContact& c) {
+[[gnu::always_inline]] inline void solveBlock(SolverBody& a, SolverBody& b, SolverContact& c) {
   SolverPoint &p1 = c.p[0], &p2 = c.p[1];
   const double a1 = p1.pn, a2 = p2.pn;
   // v_n = K x + r
@@ -191,10 +192,25 @@ inline void solveBlock(SolverBody& a, SolverBody& b, SolverContact& c) {
   apply(a, b, p2, d2 * c.nx, d2 * c.ny);
 }
 
+// Rolling resistance (Box2D v3's): an angular impulse on the relative turning, bounded by the
+// resistance times the contact's total normal impulse.
+inline void solveRolling(SolverBody& a, SolverBody& b, const SolverContact& c, SolverSurface& s) {
+  if (!(s.rolling > 0.0)) return;
+  const double limit = s.rolling * (c.p[0].pn + (c.count == 2 ? c.p[1].pn : 0.0));
+  const double old = s.rolling_impulse;
+  s.rolling_impulse = std::clamp(old - s.rolling_mass * (b.w - a.w), -limit, limit);
+  const double lambda = s.rolling_impulse - old;
+  a.w -= a.ii * lambda;
+  b.w += b.ii * lambda;
+}
+
 // One pass over a contact: friction first, then the normal impulses, so non-penetration has the
 // last word (Box2D's order); with the accumulated normal impulse of the previous pass bounding
-// friction, a new contact gets its friction from the second pass on.
-inline void solve(std::vector<SolverBody>& bodies, SolverContact& c) {
+// friction, a new contact gets its friction from the second pass on. kSurface: a contact with
+// surface effects (ContactSurface): friction aims at the tangent speed instead of 0, and rolling
+// resistance comes last.
+template <bool kSurface>
+[[gnu::noinline]] void solveContact(std::vector<SolverBody>& bodies, SolverContact& c, SolverSurface* surface) {
   SolverBody& a = bodies[c.a];
   SolverBody& b = bodies[c.b];
   const double tx = c.ny, ty = -c.nx;  // t = n × 1
@@ -202,21 +218,34 @@ inline void solve(std::vector<SolverBody>& bodies, SolverContact& c) {
     SolverPoint& p = c.p[i];
     const double limit = p.friction * p.pn;
     if (limit == 0.0 && p.pt == 0.0) continue;  // no load, no friction: nothing to do (side contacts)
-    const double total = std::clamp(p.pt - p.tangent_mass * relative(a, b, p, tx, ty), -limit, limit);
+    double slip = relative(a, b, p, tx, ty);
+    if constexpr (kSurface) slip -= surface->tangent_speed;
+    const double total = std::clamp(p.pt - p.tangent_mass * slip, -limit, limit);
     const double lambda = total - p.pt;
     p.pt = total;
     apply(a, b, p, lambda * tx, lambda * ty);
   }
   if (c.block) {
     solveBlock(a, b, c);
-    return;
+  } else {
+    for (int i = 0; i < c.count; ++i) {
+      SolverPoint& p = c.p[i];
+      const double total = std::max(p.pn - p.normal_mass * (relative(a, b, p, c.nx, c.ny) - p.target), 0.0);
+      const double lambda = total - p.pn;
+      p.pn = total;
+      apply(a, b, p, lambda * c.nx, lambda * c.ny);
+    }
   }
-  for (int i = 0; i < c.count; ++i) {
-    SolverPoint& p = c.p[i];
-    const double total = std::max(p.pn - p.normal_mass * (relative(a, b, p, c.nx, c.ny) - p.target), 0.0);
-    const double lambda = total - p.pn;
-    p.pn = total;
-    apply(a, b, p, lambda * c.nx, lambda * c.ny);
+  if constexpr (kSurface) solveRolling(a, b, c, *surface);
+}
+
+// One pass over a contact with or without surface effects. Loops over many contacts test once
+// whether any has them (WorldImpl::solver_surfaces empty), so that the plain pass runs as it is.
+inline void solve(std::vector<SolverBody>& bodies, SolverContact& c, std::vector<SolverSurface>& surfaces) {
+  if (c.surface == kNoSurface) {
+    solveContact<false>(bodies, c, nullptr);
+  } else {
+    solveContact<true>(bodies, c, &surfaces[c.surface]);
   }
 }
 
@@ -325,6 +354,7 @@ void convergeSmallIslands(WorldImpl& w, std::vector<SolverBody>& bodies, std::ve
     }
     if (points <= static_cast<uint32_t>(kSmallIsland)) {
       const int passes = (jointed ? kMoreJointIterations : kMoreIterations) * w.def.iterations;
+      const bool plain = w.solver_surfaces.empty();  // no contact with surface effects
       // Per joint of the island, the size of its impulses after its last solve (only its own solve
       // changes them).
       auto& sizes = w.island_joint_sizes;
@@ -341,13 +371,20 @@ void convergeSmallIslands(WorldImpl& w, std::vector<SolverBody>& bodies, std::ve
           change = std::max(change, std::abs(p1 - p0));
           size = std::max(size, p1);
         }
-        for (size_t k = start; k < end; ++k) {
-          if (jointed && order[k] >= nc) continue;
-          SolverContact& c = constraints[order[k]];
-          const double p0 = c.p[0].pn, p1 = c.p[1].pn;
-          solve(bodies, c);
-          change = std::max({change, std::abs(c.p[0].pn - p0), std::abs(c.p[1].pn - p1)});
-          size = std::max({size, c.p[0].pn, c.p[1].pn});
+        const auto contactPass = [&](auto solveOne) {
+          for (size_t k = start; k < end; ++k) {
+            if (jointed && order[k] >= nc) continue;
+            SolverContact& c = constraints[order[k]];
+            const double p0 = c.p[0].pn, p1 = c.p[1].pn;
+            solveOne(c);
+            change = std::max({change, std::abs(c.p[0].pn - p0), std::abs(c.p[1].pn - p1)});
+            size = std::max({size, c.p[0].pn, c.p[1].pn});
+          }
+        };
+        if (plain) {
+          contactPass([&](SolverContact& c) { solveContact<false>(bodies, c, nullptr); });
+        } else {
+          contactPass([&](SolverContact& c) { solve(bodies, c, w.solver_surfaces); });
         }
         if (change <= 1e-9 * size) break;
       }
@@ -461,15 +498,24 @@ void chooseSolvers(WorldImpl& w) {
   w.si_joints.resize(kept);
 }
 
-SolverContact compact(const Contact& c, const SolverPrepared& prep) {
+// A contact's surface effects as the solver's (SolverSurface): its index, or kNoSurface.
+uint32_t addSurface(const ContactSurface& cs, const SolverBody& a, const SolverBody& b, std::vector<SolverSurface>& surfaces) {
+  if (!cs.any()) return kNoSurface;
+  const double k_roll = a.ii + b.ii;
+  surfaces.push_back({cs.tangent_speed, cs.rolling_resistance, k_roll > 0.0 ? 1.0 / k_roll : 0.0, 0.0});
+  return static_cast<uint32_t>(surfaces.size() - 1);
+}
+
+SolverContact compact(const Contact& c, const SolverPrepared& prep, uint32_t surface) {
   // Zeroed first: a one-point contact's second point is read by convergeSmallIslands's
   // convergence test (its impulse, zero) and must not be whatever the stack held (it decided
   // the number of passes, so the results differed between builds, machines and thread counts).
   SolverContact s{};
   s.a = c.a;
   s.b = c.b;
-  s.count = c.count;
+  s.count = static_cast<uint8_t>(c.count);
   s.block = c.block;
+  s.surface = surface;
   s.nx = c.normal.x();
   s.ny = c.normal.y();
   s.k11 = prep.k11;
@@ -502,7 +548,9 @@ void solveContacts(WorldImpl& w) {
   if (w.solved.empty() && w.si_joints.empty()) return;
   auto& prepared = w.solver_prepared;
   prepared.assign(w.solved.size(), SolverPrepared{});
-  for (size_t k = 0; k < w.solved.size(); ++k) prepare(w, w.contacts[w.solved[k]], prepared[k]);
+  const bool any_surface = !w.contact_surfaces.empty();  // some contact has surface effects (pre_solve.cpp)
+  for (size_t k = 0; k < w.solved.size(); ++k)
+    prepare(w, w.contacts[w.solved[k]], prepared[k], any_surface ? w.contact_surfaces[w.solved[k]].tangent_speed : 0.0);
 
   auto& bodies = w.solver_velocities;
   bodies.resize(n);
@@ -518,7 +566,15 @@ void solveContacts(WorldImpl& w) {
   }
   auto& constraints = w.solver_contacts;
   constraints.clear();
-  for (size_t k = 0; k < w.solved.size(); ++k) constraints.push_back(compact(w.contacts[w.solved[k]], prepared[k]));
+  // Surface effects (pre_solve.cpp) for the contacts that have them; the rolling impulse starts
+  // from zero each step.
+  auto& surfaces = w.solver_surfaces;
+  surfaces.clear();
+  for (size_t k = 0; k < w.solved.size(); ++k) {
+    const Contact& c = w.contacts[w.solved[k]];
+    const uint32_t surface = any_surface ? addSurface(w.contact_surfaces[w.solved[k]], bodies[c.a], bodies[c.b], surfaces) : kNoSurface;
+    constraints.push_back(compact(c, prepared[k], surface));
+  }
   // Joints: on the velocities only (joint.h); their position error is removed afterwards
   // (position_correction.cpp).
   JointStep step;
@@ -541,9 +597,14 @@ void solveContacts(WorldImpl& w) {
   // then the equalities exactly again (the passes for contacts, limits and motors moved them).
   findJointIslands(w);
   directJointVelocities(w, bodies);
+  const bool plain = w.solver_surfaces.empty();  // no contact with surface effects
   for (int it = 0; it < w.def.iterations; ++it) {
     for (uint32_t k : w.si_joints) solveJointVelocity(bodies, w.joints[k], step, false);
-    for (SolverContact& c : constraints) solve(bodies, c);
+    if (plain) {
+      for (SolverContact& c : constraints) solveContact<false>(bodies, c, nullptr);
+    } else {
+      for (SolverContact& c : constraints) solve(bodies, c, w.solver_surfaces);
+    }
   }
   convergeSmallIslands(w, bodies, constraints, step);
   directJointVelocities(w, bodies);

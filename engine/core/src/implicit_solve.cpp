@@ -64,7 +64,7 @@ bool implicitVelocityChange(WorldImpl& w, double t0, double h, bool stiffness, c
     if (r < 0) continue;
     const Body& b = w.bodies[i];
     const Wrench& q = w.wrenches[i];
-    const Vec2 f = q.force + b.mass * (w.def.gravity * b.gravity_scale);
+    const Vec2 f = q.force + b.mass * (b.gravityOr(w.def.gravity) * b.gravity_scale);
     s.rhs.segment<3>(3 * r) << h * f.x(), h * f.y(), h * q.torque;
     s.mass[r] = Eigen::Vector3d(b.mass, b.mass, b.inertia);
   }

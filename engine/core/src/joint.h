@@ -30,6 +30,7 @@
 namespace rigidlab {
 
 constexpr uint32_t kWorldSlot = UINT32_MAX;  // a joint's "body" b when it is pinned to the world
+constexpr uint32_t kNoJoint = UINT32_MAX;    // Joint::joint_a, joint_b of a gear of two bodies
 
 // Accumulated impulses, carried between steps for warm starting (each type uses what it needs).
 struct JointImpulses {
@@ -74,7 +75,8 @@ struct Joint {
   double reference_angle = 0.0;      // θ_B − θ_A at creation (motor joint: the target)
   double length = 0.0;               // distance: rest length; pulley: the constant length_a + ratio · length_b
   // Gear: the geared joints, and the bodies c, d they turn against (side 0: a against c, side 1: b
-  // against d). Each side's frame is copied from its joint when the gear is made.
+  // against d). Each side's frame is copied from its joint when the gear is made. A gear of two
+  // bodies (JointDef::joint_a null) has kNoJoint here and turns a and b against the world.
   uint32_t joint_a = 0, joint_b = 0;
   struct GearSide {
     bool revolute = true;

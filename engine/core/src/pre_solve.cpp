@@ -1,6 +1,9 @@
 // Pre-solve (between the narrow phase and the solve): contacts of one-way platforms, and contacts
 // the world's pre-solve callback turns off, are disabled for this step (their keys say so; the
-// solvers skip them).
+// solvers skip them). The callback may also change a contact's friction, restitution and tangent
+// speed for this step. And the surface effects of the step's contacts (ContactSurface: conveyor
+// belts, rolling resistance) are gathered here, when some shape has them or the callback gives
+// some: the solvers read them beside the contacts (WorldImpl::contact_surfaces).
 //
 // One-way platform (ShapeDef::one_way, normal n of the side to stand on): the contact holds only
 // while the other shape is on that side, coming towards it, and has not started through it:
@@ -11,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "rigidlab/error.h"
 #include "stages.h"
 #include "world_impl.h"
 
@@ -29,9 +33,27 @@ bool oneWayAllows(const WorldImpl& w, const Contact& c, uint32_t platform_shape,
   return away <= 0.01;
 }
 
+// The contacts' surface effects as their shapes give them (all zero when no shape has any).
+void gatherSurfaces(WorldImpl& w) {
+  w.contact_surfaces.resize(w.contacts.size());
+  for (size_t k = 0; k < w.contacts.size(); ++k) w.contact_surfaces[k] = w.surfaceOf(w.contacts[k]);
+}
+
+// What a callback wrote, checked as the shape options are: non-negative frictions, restitution in
+// [0, 1], a finite tangent speed.
+void requireSurfaceValues(const ContactInfo& info) {
+  requireNonNegative("friction", info.friction);
+  requireNonNegative("static_friction", info.static_friction);
+  requireNonNegative("restitution", info.restitution);
+  if (info.restitution > 1.0) throw InputError("restitution", "restitution must be between 0 and 1, got " + formatNumber(info.restitution));
+  requireFinite("tangent_speed", info.tangent_speed);
+}
+
 }  // namespace
 
 void preSolve(WorldImpl& w) {
+  w.contact_surfaces.clear();
+  if (w.surface_shapes > 0) gatherSurfaces(w);
   if (w.presolve_shapes == 0) return;
   for (size_t k = 0; k < w.contacts.size(); ++k) {
     Contact& c = w.contacts[k];
@@ -49,12 +71,29 @@ void preSolve(WorldImpl& w) {
       info.shape_b = sb.id;
       info.normal = c.normal;
       info.count = c.count;
+      info.touching = c.touching;
       for (int i = 0; i < c.count; ++i) {
         info.points[i] = c.points[i].point;
         info.separations[i] = c.points[i].separation;
+        info.normal_impulses[i] = c.points[i].normal_impulse;  // last step's, as the solve starts from them
+        info.tangent_impulses[i] = c.points[i].tangent_impulse;
         info.ids[i] = c.points[i].id;
       }
+      info.friction = c.friction;
+      info.static_friction = c.static_friction;
+      info.restitution = c.restitution;
+      const ContactSurface surface = w.contact_surfaces.empty() ? w.surfaceOf(c) : w.contact_surfaces[k];
+      info.tangent_speed = surface.tangent_speed;
+      info.rolling_resistance = surface.rolling_resistance;
       enabled = w.pre_solve(info);
+      requireSurfaceValues(info);
+      c.friction = info.friction;
+      c.static_friction = info.static_friction;
+      c.restitution = info.restitution;
+      if (info.tangent_speed != surface.tangent_speed) {
+        if (w.contact_surfaces.empty()) gatherSurfaces(w);
+        w.contact_surfaces[k].tangent_speed = info.tangent_speed;
+      }
     }
     if (!enabled) {
       w.contact_keys[k].disabled = true;

@@ -86,7 +86,9 @@ void updateSleep(WorldImpl& w) {
     kinematic |= w.isMovingKinematic(i);
     if (!w.isActive(i)) continue;
     const bool still = b.velocity.squaredNorm() <= v2 && std::abs(b.angular_velocity) <= w.def.sleep_angular_speed;
-    b.sleep_time = still && !w.keep_awake[i] ? b.sleep_time + dt : 0.0;
+    // A body not allowed to sleep (BodyDef::sleeping_allowed) keeps its sleep time at zero, and so
+    // its island awake.
+    b.sleep_time = still && !w.keep_awake[i] && b.sleeping_allowed ? b.sleep_time + dt : 0.0;
   }
   // A body still overlapping deeply is not at rest, only slow: the position pass (or the soft
   // step's push-out, limited to contact_push_speed) is still separating it. Letting it sleep would

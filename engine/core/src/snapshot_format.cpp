@@ -1,7 +1,7 @@
 // The snapshot file format (world_snapshot.h). Binary, little-endian, versioned:
 //
 //   "RIGIDLAB-SNAPSHOT\n"  magic (18 bytes)
-//   u32 version            kVersion (4); versions 1 to 3 are read too
+//   u32 version            kVersion (5); versions 1 to 4 are read too
 //   u64 payload length
 //   payload                the label; since version 2 the application data (u64 length, bytes);
 //                          then the state, field by field (io() below)
@@ -32,10 +32,13 @@ constexpr char kMagic[] = "RIGIDLAB-SNAPSHOT\n";
 constexpr size_t kMagicBytes = sizeof kMagic - 1;
 // Version 1: version 2 without the application data. Version 2: version 3 with five more numbers
 // per contact point, which only sequential impulses' prepare writes and the step reads no more
-// (io(ContactPoint) below). Version 3: version 4 without WorldDef::exact_joints, which a file of
-// version 3 or older reads as off: its writer solved every joint in the contact solvers, and the
-// file resumes in its writer's bits.
-constexpr uint32_t kVersion = 4;
+// (io(ContactPoint) below). Version 4 adds what version 3 lacks, each at the end of its record:
+// a body's own gravity, sleeping_allowed and set inertia; a shape's tangent speed and rolling
+// resistance; a joint's local anchors; a constant force's torque; contact events' per-point
+// values; the collision filter's decisions. A version 3 file reads with their defaults.
+// Version 5 adds WorldDef::exact_joints, which a file of version 4 or older reads as off: its
+// writer solved every joint in the contact solvers, and the file resumes in its writer's bits.
+constexpr uint32_t kVersion = 5;
 constexpr uint32_t kOldestVersion = 1;
 
 uint64_t fnv1a(std::string_view bytes) {
@@ -52,6 +55,7 @@ enum ForceTag : uint8_t { kNoForce, kSpring, kDamper, kMouse, kConstant, kOpaque
 class Writer {
  public:
   static constexpr bool kReading = false;
+  static constexpr uint32_t version = kVersion;  // what is written
   std::string out;
 
   void raw(uint64_t v, int bytes) {
@@ -280,9 +284,9 @@ void io(A& a, WorldDef& d) {
   a(d.joint_hertz);
   a(d.joint_damping_ratio);
   a(d.static_friction_speed);
-  bool before_version_4 = false;
-  if constexpr (A::kReading) before_version_4 = a.version < 4;
-  if (before_version_4) {
+  bool before_version_5 = false;
+  if constexpr (A::kReading) before_version_5 = a.version < 5;
+  if (before_version_5) {
     d.exact_joints = false;
   } else {
     a(d.exact_joints);
@@ -319,6 +323,12 @@ void io(A& a, Body& b) {
   a(b.sleep_time);
   io(a, b.shapes);
   a(b.name);
+  if (a.version >= 4) {
+    a(b.own_gravity);
+    io(a, b.gravity);
+    a(b.sleeping_allowed);
+    a(b.inertia_set);
+  }
 }
 
 template <typename A>
@@ -337,6 +347,10 @@ void io(A& a, BodyShape& s) {
   io(a, s.filter);
   a(s.density);
   io(a, s.geometry);
+  if (a.version >= 4) {
+    a(s.tangent_speed);
+    a(s.rolling_resistance);
+  }
 }
 
 template <typename A>
@@ -384,6 +398,10 @@ void io(A& a, JointDef& d) {
   a(d.ratio);
   io(a, d.joint_a);
   io(a, d.joint_b);
+  if (a.version >= 4) {
+    io(a, d.local_anchor_a);
+    io(a, d.local_anchor_b);
+  }
 }
 
 template <typename A>
@@ -431,6 +449,10 @@ void io(A& a, Joint& j) {
   io(a, j.local_axis);
   a(j.reference_angle);
   a(j.length);
+  // Before version 4 a pulley's definition did not keep its constant (now its `length`, which
+  // World::updateJoint checks and keeps): it is the joint's.
+  if constexpr (A::kReading)
+    if (a.version < 4 && j.def.type == JointType::Pulley) j.def.length = j.length;
   a(j.joint_a);
   a(j.joint_b);
   for (Joint::GearSide& g : j.gear) {
@@ -522,14 +544,17 @@ void io(A& a, ForceEntry& e) {
       case kConstant: {
         Vec2 force = Vec2::Zero();
         std::optional<Vec2> point;
+        double torque = 0.0;
         if constexpr (!A::kReading) {
           const auto& c = static_cast<const ConstantForce&>(*e.force);
           force = c.force();
           point = c.localPoint();
+          torque = c.torque();
         }
         io(a, force);
         io(a, point);
-        if constexpr (A::kReading) e.force = std::make_shared<ConstantForce>(force, point);
+        if (a.version >= 4) a(torque);
+        if constexpr (A::kReading) e.force = std::make_shared<ConstantForce>(force, point, torque);
         break;
       }
       default: {  // kOpaque
@@ -588,6 +613,23 @@ void io(A& a, World::ContactEvent& e) {
   a(e.approach_speed);
   a(e.normal_impulse);
   a(e.tangent_impulse);
+  if (a.version >= 4) {
+    for (int i = 0; i < 2; ++i) {
+      a(e.separations[i]);
+      a(e.normal_impulses[i]);
+      a(e.tangent_impulses[i]);
+    }
+    for (double* x : {&e.friction, &e.static_friction, &e.restitution, &e.tangent_speed, &e.rolling_resistance}) a(*x);
+  }
+}
+
+template <typename A>
+void io(A& a, WorldImpl::FilterDecision& d) {
+  a(d.a);
+  a(d.b);
+  a(d.generation_a);
+  a(d.generation_b);
+  a(d.collide);
 }
 
 template <typename A>
@@ -753,6 +795,12 @@ void io(A& a, WorldImpl& w) {
   io(a, w.fast_bodies);
   io(a, w.impact.log);
   io(a, w.impact.intervals);
+  if (a.version >= 4) {
+    a(w.surface_shapes);
+    io(a, w.filter_decisions);
+  } else if constexpr (A::kReading) {
+    w.surface_shapes = 0;  // no shape of an older file has surface effects
+  }
 }
 
 // --- the checks a read state must pass before a step may index with it
@@ -831,7 +879,8 @@ void validate(const WorldImpl& w) {
     check(jointSlot(j.a) && jointSlot(j.b) && jointSlot(j.c) && jointSlot(j.d),
           "joint " + std::to_string(i) + " names a body slot out of range");
     if (j.alive && j.type == JointType::Gear)
-      check(j.joint_a < nj && j.joint_b < nj, "gear " + std::to_string(i) + " names a joint out of range");
+      check((j.joint_a < nj && j.joint_b < nj) || (j.joint_a == kNoJoint && j.joint_b == kNoJoint),
+            "gear " + std::to_string(i) + " names a joint out of range");
   }
   for (uint32_t i = 0; i < nf; ++i) {
     const ForceEntry& f = w.forces[i];

@@ -147,7 +147,7 @@ inline void addWarmStart(const SoftBody& a, const SoftBody& b, const SoftLanes& 
 // bound by instructions, not memory (callgrind: 660 instructions per contact and pass when it
 // worked on the lane arrays in place, reloading them after every store).
 template <bool kSoft, int N>
-inline void solveContact(std::vector<SoftBody>& bodies, SoftLanes& c, int l, const PassContext& ctx) {
+inline void solveContact(std::vector<SoftBody>& bodies, SoftLanes& c, int l, const PassContext& ctx, SoftSurfaceLanes* surface) {
   SoftBody a = bodies[c.a[l]], b = bodies[c.b[l]];
   const double nx = c.nx[l], ny = c.ny[l];
   Anchor r[N];
@@ -216,13 +216,27 @@ inline void solveContact(std::vector<SoftBody>& bodies, SoftLanes& c, int l, con
   const double tx = ny, ty = -nx;  // t = n × 1
   double pt[N];
   bool acted = false;
+  // A surface's own tangent speed (a conveyor), which friction aims for instead of 0.
+  const double tangent_speed = surface ? surface->tangent_speed[l] : 0.0;
   for (int i = 0; i < N; ++i) {
     const double limit = c.friction[i][l] * pn[i];
     const double old = c.pt[i][l];
-    pt[i] = std::clamp(old - c.tangent_mass[i][l] * relative(a, b, r[i], tx, ty), -limit, limit);
+    pt[i] = std::clamp(old - c.tangent_mass[i][l] * (relative(a, b, r[i], tx, ty) - tangent_speed), -limit, limit);
     const double lambda = pt[i] - old;
     apply(a, b, r[i], lambda * tx, lambda * ty);
     acted |= (pn[i] != 0.0) | (pt[i] != 0.0);
+  }
+  if (surface && surface->rolling[l] > 0.0) {
+    // Rolling resistance (contact_solver.cpp solveRolling), from zero at each sub-step's soft pass.
+    SoftSurfaceLanes& sl = *surface;
+    double total = 0.0;
+    for (int i = 0; i < N; ++i) total += pn[i];
+    const double limit = sl.rolling[l] * total, old = kSoft ? 0.0 : sl.rolling_impulse[l];
+    sl.rolling_impulse[l] = std::clamp(old - sl.rolling_mass[l] * (b.w - a.w), -limit, limit);
+    const double lambda = sl.rolling_impulse[l] - old;
+    a.w -= a.ii * lambda;
+    b.w += b.ii * lambda;
+    acted |= sl.rolling_impulse[l] != 0.0;
   }
   for (int i = 0; i < N; ++i) {
     c.pn[i][l] = pn[i];
@@ -242,12 +256,12 @@ inline void solveContact(std::vector<SoftBody>& bodies, SoftLanes& c, int l, con
 }
 
 template <bool kSoft>
-void solveGroup(std::vector<SoftBody>& bodies, SoftLanes& c, const PassContext& ctx) {
+void solveGroup(std::vector<SoftBody>& bodies, SoftLanes& c, const PassContext& ctx, SoftSurfaceLanes* surface) {
   for (int l = 0; l < L; ++l) {
     if (c.count[l] == 2) {
-      solveContact<kSoft, 2>(bodies, c, l, ctx);
+      solveContact<kSoft, 2>(bodies, c, l, ctx, surface);
     } else if (c.count[l] == 1) {
-      solveContact<kSoft, 1>(bodies, c, l, ctx);
+      solveContact<kSoft, 1>(bodies, c, l, ctx, surface);
     }
   }
 }
@@ -405,9 +419,10 @@ template <int NP, bool kThreaded>
 }
 
 // NP: the most points of any lane (SoftLanes::points); groups of one-point contacts (circles) skip
-// the second point's work, half of the pass.
-template <bool kSoft, int NP, bool kThreaded>
-[[gnu::always_inline]] inline void solveWide(std::vector<SoftBody>& bodies, SoftLanes& c, const PassContext& ctx) {
+// the second point's work, half of the pass. kSurface: the group has surface effects (surface),
+// a separate instance so that the others compile as they did without them.
+template <bool kSoft, int NP, bool kThreaded, bool kSurface>
+[[gnu::always_inline]] inline void solveWide(std::vector<SoftBody>& bodies, SoftLanes& c, const PassContext& ctx, SoftSurfaceLanes* surface) {
   WideBody a = gather(bodies, c.a), b = gather(bodies, c.b);
   const V nx = load(c.nx), ny = load(c.ny);
   const V zero = splat(0.0);
@@ -492,19 +507,35 @@ template <bool kSoft, int NP, bool kThreaded>
   }
   const V tx = ny, ty = -nx;  // t = n × 1
   V pt[2];
+  // Surface effects (SoftSurfaceLanes) only in groups that have them (SoftLanes::surface, a byte
+  // of the group's first line).
   for (int i = 0; i < NP; ++i) {
     const V limit = load(c.friction[i]) * pn[i];
     const V old = load(c.pt[i]);
-    pt[i] = vmin(vmax(old - load(c.tangent_mass[i]) * relativeWide(a, b, r[i], tx, ty), -limit), limit);
+    V slip = relativeWide(a, b, r[i], tx, ty);
+    if constexpr (kSurface) slip -= load(surface->tangent_speed);
+    pt[i] = vmin(vmax(old - load(c.tangent_mass[i]) * slip, -limit), limit);
     applyWide(a, b, r[i], (pt[i] - old) * tx, (pt[i] - old) * ty);
     store(c.pn[i], pn[i]);
     store(c.pt[i], pt[i]);
+  }
+  [[maybe_unused]] M rolled;  // kSurface only
+  if constexpr (kSurface) {
+    // Rolling resistance on the four lanes (solveContact's), lanes without it bounded by zero.
+    const V total = NP == 2 ? pn[0] + pn[1] : pn[0];
+    const V limit = load(surface->rolling) * total, old = kSoft ? zero : load(surface->rolling_impulse);
+    const V rolling = vmin(vmax(old - load(surface->rolling_mass) * (b.w - a.w), -limit), limit);
+    store(surface->rolling_impulse, rolling);
+    a.w -= a.ii * (rolling - old);
+    b.w += b.ii * (rolling - old);
+    rolled = rolling != zero;
   }
   scatter<kThreaded>(bodies, c.a, a);
   scatter<kThreaded>(bodies, c.b, b);
   // Only real points count (a neutral one's impulses are zero unless the velocities are not finite).
   const M two = M{c.count[0], c.count[1], c.count[2], c.count[3]} == 2;
   M acted = (pn[0] != zero) | (pt[0] != zero);
+  if constexpr (kSurface) acted |= rolled;
   if (NP == 2) acted |= two & ((pn[1] != zero) | (pt[1] != zero));
   // Empty lanes may record anything: the write-back reads real contacts only.
   storeMask(c.acted, loadMask(c.acted) | acted);
@@ -525,31 +556,37 @@ bool& onePointPass() {
 
 // One pass over the groups g0 … g1. kThreaded: other groups of the colour may be solved on other
 // threads at the same time, so bodies that several lanes share are not written (see scatter);
-// fixed at compile time so that the serial pass stores without a test per lane.
-template <bool kSoft, bool kThreaded>
+// fixed at compile time so that the serial pass stores without a test per lane. kSurfaces: some
+// group has surface effects (SoftLanes::surface); a separate instance, so that steps without them
+// run the code they ran before them (with the test per group inside, the pass of a 40-row pyramid
+// took 3 % more instructions, cachegrind).
+template <bool kSoft, bool kThreaded, bool kSurfaces>
 [[gnu::always_inline]] inline void passGroups(std::vector<SoftBody>& bodies, std::vector<SoftLanes>& groups, std::vector<SoftTally>& tallies,
-                                              std::vector<SoftTotals>& totals, double inv_h, int substep, std::vector<SoftKick>* warm,
+                                              std::vector<SoftTotals>& totals, std::vector<SoftSurfaceLanes>* surfaces, double inv_h, int substep, std::vector<SoftKick>* warm,
                                               const Level* levels, size_t g0, size_t g1) {
   for (size_t g = g0; g < g1; ++g) {
+    SoftSurfaceLanes* const surface = kSurfaces && groups[g].surface ? &(*surfaces)[g] : nullptr;
     const PassContext ctx{inv_h, substep, levels, &tallies[g * L], &totals[g], warm};
     if (groups[g].serial) {
-      solveGroup<kSoft>(bodies, groups[g], ctx);
+      solveGroup<kSoft>(bodies, groups[g], ctx, surface);
     } else if (groups[g].points <= 1 && onePointPass()) {
-      solveWide<kSoft, 1, kThreaded>(bodies, groups[g], ctx);
+      if (kSurfaces && surface) solveWide<kSoft, 1, kThreaded, kSurfaces>(bodies, groups[g], ctx, surface);
+      else solveWide<kSoft, 1, kThreaded, false>(bodies, groups[g], ctx, nullptr);
     } else {
-      solveWide<kSoft, 2, kThreaded>(bodies, groups[g], ctx);
+      if (kSurfaces && surface) solveWide<kSoft, 2, kThreaded, kSurfaces>(bodies, groups[g], ctx, surface);
+      else solveWide<kSoft, 2, kThreaded, false>(bodies, groups[g], ctx, nullptr);
     }
   }
 }
 
-template <bool kSoft>
+template <bool kSoft, bool kSurfaces>
 [[gnu::always_inline]] inline void passBody(std::vector<SoftBody>& bodies, std::vector<SoftLanes>& groups, std::vector<SoftTally>& tallies,
-                                            std::vector<SoftTotals>& totals, double inv_h, int substep, std::vector<SoftKick>* warm,
+                                            std::vector<SoftTotals>& totals, std::vector<SoftSurfaceLanes>* surfaces, double inv_h, int substep, std::vector<SoftKick>* warm,
                                             const Level* levels, size_t g0, size_t g1, bool threaded) {
   if (threaded) {
-    passGroups<kSoft, true>(bodies, groups, tallies, totals, inv_h, substep, warm, levels, g0, g1);
+    passGroups<kSoft, true, kSurfaces>(bodies, groups, tallies, totals, surfaces, inv_h, substep, warm, levels, g0, g1);
   } else {
-    passGroups<kSoft, false>(bodies, groups, tallies, totals, inv_h, substep, warm, levels, g0, g1);
+    passGroups<kSoft, false, kSurfaces>(bodies, groups, tallies, totals, surfaces, inv_h, substep, warm, levels, g0, g1);
   }
 }
 
@@ -567,19 +604,19 @@ bool cpuHasAvx2() { return false; }
 #endif
 
 #if RIGIDLAB_SOFT_STEP_AVX2
-template <bool kSoft>
+template <bool kSoft, bool kSurfaces>
 __attribute__((target("avx2"))) void passAvx2(std::vector<SoftBody>& bodies, std::vector<SoftLanes>& groups, std::vector<SoftTally>& tallies,
-                                              std::vector<SoftTotals>& totals, double inv_h, int substep, std::vector<SoftKick>* warm,
+                                              std::vector<SoftTotals>& totals, std::vector<SoftSurfaceLanes>* surfaces, double inv_h, int substep, std::vector<SoftKick>* warm,
                   const Level* levels, size_t g0, size_t g1, bool threaded) {
-  passBody<kSoft>(bodies, groups, tallies, totals, inv_h, substep, warm, levels, g0, g1, threaded);
+  passBody<kSoft, kSurfaces>(bodies, groups, tallies, totals, surfaces, inv_h, substep, warm, levels, g0, g1, threaded);
 }
 #endif
 
-template <bool kSoft>
+template <bool kSoft, bool kSurfaces>
 void passBaseline(std::vector<SoftBody>& bodies, std::vector<SoftLanes>& groups, std::vector<SoftTally>& tallies,
-                  std::vector<SoftTotals>& totals, double inv_h, int substep, std::vector<SoftKick>* warm,
+                  std::vector<SoftTotals>& totals, std::vector<SoftSurfaceLanes>* surfaces, double inv_h, int substep, std::vector<SoftKick>* warm,
                   const Level* levels, size_t g0, size_t g1, bool threaded) {
-  passBody<kSoft>(bodies, groups, tallies, totals, inv_h, substep, warm, levels, g0, g1, threaded);
+  passBody<kSoft, kSurfaces>(bodies, groups, tallies, totals, surfaces, inv_h, substep, warm, levels, g0, g1, threaded);
 }
 
 bool& avx2Selected() {
@@ -589,15 +626,18 @@ bool& avx2Selected() {
 
 template <bool kSoft>
 void pass(std::vector<SoftBody>& bodies, std::vector<SoftLanes>& groups, std::vector<SoftTally>& tallies, std::vector<SoftTotals>& totals,
+          std::vector<SoftSurfaceLanes>* surfaces,
           double inv_h, int substep, std::vector<SoftKick>* warm, const Level* levels, size_t g0, size_t g1,
           bool threaded) {
 #if RIGIDLAB_SOFT_STEP_AVX2
   if (avx2Selected()) {
-    passAvx2<kSoft>(bodies, groups, tallies, totals, inv_h, substep, warm, levels, g0, g1, threaded);
+    if (surfaces) passAvx2<kSoft, true>(bodies, groups, tallies, totals, surfaces, inv_h, substep, warm, levels, g0, g1, threaded);
+    else passAvx2<kSoft, false>(bodies, groups, tallies, totals, nullptr, inv_h, substep, warm, levels, g0, g1, threaded);
     return;
   }
 #endif
-  passBaseline<kSoft>(bodies, groups, tallies, totals, inv_h, substep, warm, levels, g0, g1, threaded);
+  if (surfaces) passBaseline<kSoft, true>(bodies, groups, tallies, totals, surfaces, inv_h, substep, warm, levels, g0, g1, threaded);
+  else passBaseline<kSoft, false>(bodies, groups, tallies, totals, nullptr, inv_h, substep, warm, levels, g0, g1, threaded);
 }
 
 // Restitution after the sub-steps (Box2D v3's b2ApplyRestitution), for points that pushed and
@@ -608,7 +648,7 @@ void pass(std::vector<SoftBody>& bodies, std::vector<SoftLanes>& groups, std::ve
 // Friction acts on the restitution impulse too (Coulomb over the whole collision, docs/design/thesis.md §10;
 // docs/design/accuracy.md §3.11: experiment 1's friction impulse is f times the full normal impulse).
 void restitute(std::vector<SoftBody>& bodies, const SoftLanes& c, int l, SoftTally& t, SoftTotals& totals, double threshold,
-               int substeps) {
+               int substeps, double tangent_speed) {
   SoftBody& a = bodies[c.a[l]];
   SoftBody& b = bodies[c.b[l]];
   const double nx = c.nx[l], ny = c.ny[l], tx = ny, ty = -nx;
@@ -622,7 +662,7 @@ void restitute(std::vector<SoftBody>& bodies, const SoftLanes& c, int l, SoftTal
     apply(a, b, r, normal * nx, normal * ny);
     totals.n[i][l] += normal;
     const double limit = c.friction[i][l] * normal;
-    const double tangent = std::clamp(-c.tangent_mass[i][l] * relative(a, b, r, tx, ty), -limit, limit);
+    const double tangent = std::clamp(-c.tangent_mass[i][l] * (relative(a, b, r, tx, ty) - tangent_speed), -limit, limit);
     apply(a, b, r, tangent * tx, tangent * ty);
     totals.t[i][l] += tangent;
   }
@@ -796,6 +836,18 @@ bool softStepUseAvx2(bool on) {
   return avx2Selected() == on;
 }
 
+namespace {
+// A contact's surface effects in its lane of the group's SoftSurfaceLanes; returns its tangent speed.
+[[gnu::noinline]] double surfaceLane(const ContactSurface& surface, const SoftBody& a, const SoftBody& b, SoftSurfaceLanes& sl, int l) {
+  if (!surface.any()) return 0.0;
+  const double k_roll = a.ii + b.ii;
+  sl.tangent_speed[l] = surface.tangent_speed;
+  sl.rolling[l] = surface.rolling_resistance;
+  sl.rolling_mass[l] = k_roll > 0.0 ? 1.0 / k_roll : 0.0;
+  return surface.tangent_speed;
+}
+}  // namespace
+
 void softStep(WorldImpl& w) {
   const uint32_t n = static_cast<uint32_t>(w.bodies.size());
   const int substeps = w.def.substeps;
@@ -868,6 +920,10 @@ void softStep(WorldImpl& w) {
   tallies.resize(source.size());
   auto& totals = w.soft_totals;
   totals.assign(groups.size(), SoftTotals{});
+  // Surface effects (pre_solve.cpp): lanes for them only when some contact of the step has them.
+  auto& surfaces = w.soft_surfaces;
+  surfaces.clear();
+  if (!w.contact_surfaces.empty()) surfaces.assign(groups.size(), SoftSurfaceLanes{});
   // Empty lanes and the second point of one-point contacts: neutral, so that the vector code can
   // run them with the others and compute impulses of zero (an enormous gap, no anchors, no friction,
   // the immovable body n).
@@ -896,6 +952,7 @@ void softStep(WorldImpl& w) {
   // cache on nearly every one (this loop took 40 % of the soft step's own time that way).
   // With several threads, each range of contacts is prepared on its own thread and the warm starts,
   // sums over each body's contacts, are added afterwards serially in the same order.
+  const bool any_surface = !surfaces.empty();
   const auto prepare = [&](size_t k) {
     prefetchContact(w, k, 8);
     prefetchCenters(w, k, 8);
@@ -917,6 +974,7 @@ void softStep(WorldImpl& w) {
       sc.ny[l] = c.normal.y();
       sc.stiff[l] = fixed ? -1 : 0;
       if (sc.bounce[l]) t.restitution = c.restitution;  // the tallies are read for bouncing contacts only
+      const double tangent_speed = any_surface ? surfaceLane(w.contact_surfaces[w.soft_solved[k]], a, b, surfaces[g], l) : 0.0;
       const Vec2 nrm = c.normal, tan = cross(c.normal, 1.0);
       const Vec2 ca = w.bodies[c.a].center, cb = w.bodies[c.b].center;
       const SoftKick ka = kick[c.a], kb = kick[c.b];
@@ -934,9 +992,9 @@ void softStep(WorldImpl& w) {
         sc.k[i][l] = kn;
         sc.tangent_mass[i][l] = kt > 0.0 ? 1.0 / kt : 0.0;
         sc.inv_k[i][l] = 1.0 / kn;
-        // f_s or f_d from the slip at the start of the step (docs/design/thesis.md §10); the bodies still hold
-        // the velocities of the start of the step.
-        const double slip = relative(a, b, anchorOf(sc, i, l), tan.x(), tan.y());
+        // f_s or f_d from the slip at the start of the step (docs/design/thesis.md §10), against the
+        // surface's own motion; the bodies still hold the velocities of the start of the step.
+        const double slip = relative(a, b, anchorOf(sc, i, l), tan.x(), tan.y()) - tangent_speed;
         sc.friction[i][l] = std::abs(slip) < w.def.static_friction_speed ? c.static_friction : c.friction;
         sc.pn[i][l] = w.def.warm_starting ? cp.normal_impulse : 0.0;
         sc.pt[i][l] = w.def.warm_starting ? cp.tangent_impulse : 0.0;
@@ -983,11 +1041,16 @@ void softStep(WorldImpl& w) {
     for (size_t k = 0; k < w.soft_solved.size(); ++k) warmStart(k);
   }
 
-  for (SoftLanes& sc : groups) {
+  for (size_t g = 0; g < groups.size(); ++g) {
+    SoftLanes& sc = groups[g];
     const int blocks = (sc.block[0] != 0) + (sc.block[1] != 0) + (sc.block[2] != 0) + (sc.block[3] != 0);
     sc.blocks = blocks == 0 ? SoftLanes::kNoBlock : blocks == L ? SoftLanes::kAllBlock : SoftLanes::kSomeBlocks;
     sc.points = std::max({sc.count[0], sc.count[1], sc.count[2], sc.count[3]});
+    sc.surface = 0;
+    if (!surfaces.empty())
+      for (int l = 0; l < L; ++l) sc.surface |= surfaces[g].tangent_speed[l] != 0.0 || surfaces[g].rolling[l] > 0.0;
   }
+  std::vector<SoftSurfaceLanes>* const surface_lanes = surfaces.empty() ? nullptr : &surfaces;
 
   // Joints (joint.h): prepared at the detection state, solved serially before the contacts of each
   // pass, with the joints' own soft bias.
@@ -1016,17 +1079,17 @@ void softStep(WorldImpl& w) {
   const auto runPass = [&](auto soft, int step, std::vector<SoftKick>* next) {
     constexpr bool kSoft = decltype(soft)::value;
     if (!pool) {
-      pass<kSoft>(bodies, groups, tallies, totals, inv_h, step, next, levels, 0, groups.size(), false);
+      pass<kSoft>(bodies, groups, tallies, totals, surface_lanes, inv_h, step, next, levels, 0, groups.size(), false);
       return;
     }
     const size_t colors = color_first.size() - 2;
     for (size_t c = 0; c < colors; ++c) {
       const size_t g0 = color_first[c], g1 = color_first[c + 1];
       pool->parallelFor(g1 - g0, kGroupGrain, [&](size_t begin, size_t end) {
-        pass<kSoft>(bodies, groups, tallies, totals, inv_h, step, next, levels, g0 + begin, g0 + end, true);
+        pass<kSoft>(bodies, groups, tallies, totals, surface_lanes, inv_h, step, next, levels, g0 + begin, g0 + end, true);
       });
     }
-    pass<kSoft>(bodies, groups, tallies, totals, inv_h, step, next, levels, color_first[colors], color_first[colors + 1], false);
+    pass<kSoft>(bodies, groups, tallies, totals, surface_lanes, inv_h, step, next, levels, color_first[colors], color_first[colors + 1], false);
   };
   for (int step = 0; step < substeps; ++step) {
     forEach(list.size(), kBodyGrain, [&](size_t begin, size_t end) {
@@ -1063,7 +1126,8 @@ void softStep(WorldImpl& w) {
   for (size_t g = 0; g < groups.size(); ++g)
     for (int l = 0; l < L; ++l)
       if (groups[g].bounce[l])
-        restitute(bodies, groups[g], l, tallies[g * L + l], totals[g], w.def.restitution_threshold, substeps);
+        restitute(bodies, groups[g], l, tallies[g * L + l], totals[g], w.def.restitution_threshold, substeps,
+                  groups[g].surface ? surfaces[g].tangent_speed[l] : 0.0);
 
   // Write back: impulses for warm starting and reports; bodies that some impulse acted on take the
   // sub-stepped state, the others keep the integrator's.

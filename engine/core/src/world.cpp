@@ -385,7 +385,7 @@ double World::gravityPotentialEnergy() const {
   double e = 0.0;
   for (size_t i = 0; i < impl_->bodies.size(); ++i) {
     const Body& b = impl_->bodies[i];
-    if (impl_->alive[i] && b.isDynamic()) e -= b.mass * b.gravity_scale * impl_->def.gravity.dot(b.center);
+    if (impl_->alive[i] && b.isDynamic()) e -= b.mass * b.gravity_scale * b.gravityOr(impl_->def.gravity).dot(b.center);
   }
   return e;
 }
@@ -419,8 +419,16 @@ std::optional<BodyId> World::bodyAt(const Vec2& point) const {
 
 namespace {
 
-ContactInfo infoOf(const WorldImpl& w, const Contact& c) {
+ContactInfo infoOf(const WorldImpl& w, const Contact& c, size_t k) {
   ContactInfo info;
+  info.friction = c.friction;
+  info.static_friction = c.static_friction;
+  info.restitution = c.restitution;
+  // The step's surface (a pre-solve callback's tangent speed included) while the step's list is
+  // there; the shapes' otherwise.
+  const ContactSurface surface = w.contact_surfaces.size() == w.contacts.size() ? w.contact_surfaces[k] : w.surfaceOf(c);
+  info.tangent_speed = surface.tangent_speed;
+  info.rolling_resistance = surface.rolling_resistance;
   info.a = w.bodies[c.a].id;
   info.b = w.bodies[c.b].id;
   info.shape_a = w.shapes[c.shape_a].id;
@@ -443,14 +451,23 @@ ContactInfo infoOf(const WorldImpl& w, const Contact& c) {
 std::vector<ContactInfo> World::contactsOf(BodyId body) const {
   impl_->get(body);
   std::vector<ContactInfo> out;
-  for (const Contact& c : impl_->contacts)
-    if (c.touching && (c.a == body.index || c.b == body.index)) out.push_back(infoOf(*impl_, c));
+  for (size_t k = 0; k < impl_->contacts.size(); ++k) {
+    const Contact& c = impl_->contacts[k];
+    if (c.touching && (c.a == body.index || c.b == body.index)) out.push_back(infoOf(*impl_, c, k));
+  }
   return out;
 }
 
 std::vector<ContactInfo> World::contacts() const {
   std::vector<ContactInfo> out;
-  for (const Contact& c : impl_->contacts) out.push_back(infoOf(*impl_, c));
+  for (size_t k = 0; k < impl_->contacts.size(); ++k) out.push_back(infoOf(*impl_, impl_->contacts[k], k));
+  return out;
+}
+
+std::vector<ContactInfo> World::touchingContacts() const {
+  std::vector<ContactInfo> out;
+  for (size_t k = 0; k < impl_->contacts.size(); ++k)
+    if (impl_->contacts[k].touching) out.push_back(infoOf(*impl_, impl_->contacts[k], k));
   return out;
 }
 

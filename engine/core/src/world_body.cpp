@@ -35,6 +35,7 @@ void dropContacts(WorldImpl& w, uint32_t slot) {
   }
   w.contacts.resize(kept);
   keys.resize(kept);
+  w.contact_surfaces.clear();  // index for index with the contacts no more
 }
 
 // Sets the body's transform and centre of mass from its origin and angle. A finite position near
@@ -107,6 +108,7 @@ BodyId World::createBody(const BodyDef& def) {
   requireNonNegative("linear_damping", def.linear_damping);
   requireNonNegative("angular_damping", def.angular_damping);
   requireFinite("gravity_scale", def.gravity_scale);
+  if (def.gravity) requireFinite("gravity", *def.gravity);
   ShapeDef shape_def;
   if (def.shape) {
     shape_def.shape = *def.shape;
@@ -135,12 +137,15 @@ BodyId World::createBody(const BodyDef& def) {
   b.linear_damping = def.linear_damping;
   b.angular_damping = def.angular_damping;
   b.gravity_scale = def.gravity_scale;
+  b.own_gravity = def.gravity.has_value();
+  b.gravity = def.gravity.value_or(Vec2::Zero());
+  b.sleeping_allowed = def.sleeping_allowed;
   b.fixed_rotation = def.fixed_rotation;
   b.bullet = def.bullet;
   b.enabled = def.enabled;
   // Only a dynamic body at rest may start asleep (a moving one would freeze in the air).
   const bool at_rest = def.velocity == Vec2::Zero() && def.angular_velocity == 0.0;
-  b.awake = def.enabled && (def.awake || def.type != BodyType::Dynamic || !w.def.sleeping || !at_rest);
+  b.awake = def.enabled && (def.awake || def.type != BodyType::Dynamic || !w.def.sleeping || !at_rest || !def.sleeping_allowed);
   w.updateMass(b, "density", 0.0);  // no shapes yet
   place(b, position, angle);
 
@@ -297,6 +302,27 @@ void World::setType(BodyId id, BodyType type) {
   w.updateMass(b, "density", b.density);  // valid when the shapes were made
 }
 
+void World::setInertia(BodyId id, double inertia) {
+  WorldImpl& w = *impl_;
+  w.requireUnlocked("setInertia");
+  Body& b = w.get(id);
+  requirePositive("inertia", inertia);
+  if (!std::isfinite(1.0 / inertia)) throw WorldImpl::massError("inertia", b.mass, inertia, inertia);
+  w.wakeIsland(id.index);
+  b.inertia_set = true;
+  b.inertia = inertia;
+  b.inv_inertia = b.isDynamic() && !b.fixed_rotation ? 1.0 / b.inertia : 0.0;
+}
+
+void World::resetMass(BodyId id) {
+  WorldImpl& w = *impl_;
+  w.requireUnlocked("resetMass");
+  Body& b = w.get(id);
+  w.wakeIsland(id.index);
+  b.inertia_set = false;
+  w.updateMass(b, "density", b.density);
+}
+
 void World::setMass(BodyId id, double mass) {
   WorldImpl& w = *impl_;
   w.requireUnlocked("setMass");
@@ -415,6 +441,30 @@ void World::applyImpulse(BodyId id, const Vec2& impulse, const Vec2& world_point
   // Δv = J / m, Δω = (p − c) × J / I.
   b.velocity += b.inv_mass * impulse;
   b.angular_velocity += b.inv_inertia * cross(world_point - b.center, impulse);
+}
+
+void World::applyAngularImpulse(BodyId id, double impulse) {
+  impl_->requireUnlocked("applyAngularImpulse");
+  Body& b = impl_->get(id);
+  impl_->wakeIsland(id.index);
+  requireFinite("impulse", impulse);
+  b.angular_velocity += b.inv_inertia * impulse;  // Δω = j / I (0 for static, kinematic, fixed rotation)
+}
+
+void World::setBodyGravity(BodyId id, std::optional<Vec2> gravity) {
+  impl_->requireUnlocked("setBodyGravity");
+  Body& b = impl_->get(id);
+  if (gravity) requireFinite("gravity", *gravity);
+  b.own_gravity = gravity.has_value();
+  b.gravity = gravity.value_or(Vec2::Zero());
+  impl_->wakeIsland(id.index);
+}
+
+void World::setSleepingAllowed(BodyId id, bool on) {
+  impl_->requireUnlocked("setSleepingAllowed");
+  Body& b = impl_->get(id);
+  b.sleeping_allowed = on;
+  if (!on) impl_->wakeIsland(id.index);
 }
 
 void World::wake(BodyId id) {

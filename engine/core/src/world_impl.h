@@ -196,11 +196,13 @@ struct WorldImpl {
   std::vector<SolverBody> solver_velocities;
   std::vector<SolverContact> solver_contacts;
   std::vector<SolverPrepared> solver_prepared;  // per solved contact
+  std::vector<SolverSurface> solver_surfaces;   // the solved contacts with surface effects (SolverContact::surface)
   // The soft step's (soft_step.cpp).
   std::vector<SoftBody> soft_bodies;
   std::vector<SoftLanes> soft_lanes;
   std::vector<SoftTally> soft_tally;      // per lane of soft_lanes
   std::vector<SoftTotals> soft_totals;    // per group of soft_lanes
+  std::vector<SoftSurfaceLanes> soft_surfaces;  // per group of soft_lanes when some has surface effects, else empty
   std::vector<uint32_t> soft_source;      // per lane: index into contacts, or UINT32_MAX if empty
   std::vector<uint32_t> soft_slot;        // per soft contact: its lane (group · L + lane)
   std::vector<uint32_t> soft_colors_used; // per slot: colours of the contacts that move the body
@@ -267,6 +269,30 @@ struct WorldImpl {
   // for them, so that a world without events does none of this work.
   bool every_contact_event = false;
   uint32_t event_shapes = 0, presolve_shapes = 0, sensor_shapes = 0;
+  uint32_t surface_shapes = 0;  // shapes with a tangent speed or rolling resistance
+  // This step's contacts' surface effects (pre_solve.cpp), index for index with `contacts`, when
+  // some shape has them or a pre-solve callback gave some; empty otherwise (the solvers then look
+  // no further).
+  std::vector<ContactSurface> contact_surfaces;
+  // The surface effects of a contact as its shapes give them: the tangent speeds add; rolling
+  // resistance is the larger coefficient times the larger radius (Box2D v3's rule).
+  ContactSurface surfaceOf(const Contact& c) const {
+    const BodyShape &a = shapes[c.shape_a], &b = shapes[c.shape_b];
+    ContactSurface s;
+    s.tangent_speed = a.tangent_speed + b.tangent_speed;
+    const double coefficient = std::max(a.rolling_resistance, b.rolling_resistance);
+    if (coefficient > 0.0) s.rolling_resistance = coefficient * std::max(a.geometry.radius, b.geometry.radius);
+    return s;
+  }
+  // Collision filter (World::setShouldCollide, broad_phase.cpp): the decisions for the pairs whose
+  // boxes overlapped at the last step, ascending, so a pair is asked once while it overlaps.
+  World::ShouldCollideFn should_collide;
+  struct FilterDecision {
+    uint32_t a, b;                    // shape slots, a < b
+    uint32_t generation_a, generation_b;  // of the shapes asked about (a slot reused is a new pair)
+    bool collide;
+  };
+  std::vector<FilterDecision> filter_decisions, filter_scratch;
   std::vector<World::ContactEvent> contact_events;
   std::vector<uint32_t> event_contacts;  // per event: its contact's index (begin and hit: impulses after the solve)
   std::vector<char> previous_matched;    // per previous contact: it continues (narrow_phase.cpp)

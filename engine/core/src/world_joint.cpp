@@ -59,6 +59,8 @@ void validateTunables(const JointDef& d) {
 }
 
 void copyTunables(JointDef& to, const JointDef& from) {
+  to.length = from.length;  // distance: the rest length; pulley: the rope's constant (updateJoint)
+  to.ratio = from.ratio;    // gear and pulley (updateJoint)
   to.collide_connected = from.collide_connected;
   to.break_force = from.break_force;
   to.break_torque = from.break_torque;
@@ -112,7 +114,23 @@ JointId World::createJoint(const JointDef& in) {
   JointDef d = in;
   validateTunables(d);
   Joint j;
-  if (d.type == JointType::Gear) {
+  if (d.type == JointType::Gear && d.joint_a.isNull() && d.joint_b.isNull()) {
+    // Two bodies' angles geared: each side a revolute coordinate against the world,
+    // θ_a + ratio · θ_b constant (Chipmunk's cpGearJoint; the ratio as the joint form's).
+    if (d.a.isNull() || d.b.isNull()) throw InputError(d.a.isNull() ? "a" : "b", "a gear of bodies needs two bodies, a and b");
+    w.get(d.a);
+    w.get(d.b);
+    if (d.a == d.b) throw InputError("b", "b must be another body than a");
+    if (!std::isfinite(d.ratio) || d.ratio == 0.0) throw InputError("ratio", "ratio must be finite and not 0, got " + formatNumber(d.ratio));
+    j.a = d.a.index;
+    j.b = d.b.index;
+    j.c = j.d = kWorldSlot;
+    j.joint_a = j.joint_b = kNoJoint;
+    for (Joint::GearSide& side : j.gear) side.revolute = true;
+    j.gear_constant = w.bodies[j.a].angle + d.ratio * w.bodies[j.b].angle;
+  } else if (d.type == JointType::Gear) {
+    if (!d.a.isNull() || !d.b.isNull())
+      throw InputError(d.a.isNull() ? "b" : "a", "a gear joins two joints (joint_a, joint_b) or two bodies (a, b), not both");
     const auto geared = [&](JointId id, const char* field) -> const Joint& {
       if (id.index >= w.joints.size() || !w.joints[id.index].alive || w.joints[id.index].generation != id.generation)
         throw InputError(field, std::string(field) + " is not a valid joint (it was removed or never existed)");
@@ -160,6 +178,13 @@ JointId World::createJoint(const JointDef& in) {
     const Transform xa = transformOf(w, j.a), xb = transformOf(w, j.b);
     j.local_a = xa.applyInverse(d.anchor_a);
     j.local_b = xb.applyInverse(d.anchor_b);
+    // Anchors in body coordinates: used as given; the world anchors follow (for reading back).
+    if (d.local_anchor_a) j.local_a = requireFinite("local_anchor_a", *d.local_anchor_a);
+    if (d.local_anchor_b) j.local_b = requireFinite("local_anchor_b", *d.local_anchor_b);
+    if (d.local_anchor_a || d.local_anchor_b) {
+      d.anchor_a = xa.apply(j.local_a);
+      d.anchor_b = xb.apply(j.local_b);
+    }
     // The solver squares lever arms and lengths: an anchor so far from its body that they overflow
     // is refused, naming it (not left to freeze both bodies in the first step).
     for (const auto& [field, local, anchor, side] : {std::tuple{"anchor_a", &j.local_a, &d.anchor_a, "a"},
@@ -201,6 +226,7 @@ JointId World::createJoint(const JointDef& in) {
       if (!(la > 1e-6)) throw InputError("anchor_a", "anchor_a must not be at ground_a (the rope needs a length)");
       if (!(lb > 1e-6)) throw InputError("anchor_b", "anchor_b must not be at ground_b (the rope needs a length)");
       j.length = la + d.ratio * lb;
+      d.length = j.length;
     }
   }
   const auto dynamic = [&](uint32_t slot) { return slot != kWorldSlot && w.bodies[slot].isDynamic(); };
@@ -254,7 +280,8 @@ void WorldImpl::releaseJoint(uint32_t index) {
   free_joints.push_back(index);
   // A gear goes with either of its joints.
   for (uint32_t k = 0; k < joints.size(); ++k)
-    if (joints[k].alive && joints[k].def.type == JointType::Gear && (joints[k].joint_a == index || joints[k].joint_b == index))
+    if (joints[k].alive && joints[k].def.type == JointType::Gear && joints[k].joint_a != kNoJoint &&
+        (joints[k].joint_a == index || joints[k].joint_b == index))
       releaseJoint(k);
 }
 
@@ -289,9 +316,44 @@ void World::updateJoint(JointId id, const JointDef& def) {
     checked.angular_offset = def.angular_offset;
   }
   validateTunables(checked);
+  // The length and ratio may change at run time (distance, gear, pulley); the other kinds keep theirs.
+  const bool length_changed = checked.length != j.def.length, ratio_changed = checked.ratio != j.def.ratio;
+  if (j.def.type == JointType::Distance) {
+    if (!(std::isfinite(checked.length) && checked.length >= 0.0))
+      throw InputError("length", "length must be >= 0, got " + formatNumber(checked.length));
+  } else if (j.def.type == JointType::Pulley) {
+    if (!(std::isfinite(checked.ratio) && checked.ratio > 0.0))
+      throw InputError("ratio", "ratio must be > 0, got " + formatNumber(checked.ratio));
+    if (!(std::isfinite(checked.length) && checked.length >= 0.0))
+      throw InputError("length", "length must be >= 0, got " + formatNumber(checked.length));
+  } else if (j.def.type == JointType::Gear) {
+    checked.length = j.def.length;
+    if (!std::isfinite(checked.ratio) || checked.ratio == 0.0)
+      throw InputError("ratio", "ratio must be finite and not 0, got " + formatNumber(checked.ratio));
+  } else {
+    checked.length = j.def.length;
+    checked.ratio = j.def.ratio;
+  }
   if (j.def.type == JointType::Motor) {
     j.local_a = checked.linear_offset;
     j.reference_angle = checked.angular_offset;
+  }
+  if (j.def.type == JointType::Distance) j.length = checked.length;
+  if (j.def.type == JointType::Pulley) {
+    // A new ratio keeps the ropes as they are now (the constant follows); a new length is the constant.
+    if (length_changed) {
+      j.length = checked.length;
+    } else if (ratio_changed) {
+      const JointState now = jointState(id);
+      j.length = (now.world_anchor_a - checked.ground_a).norm() + checked.ratio * (now.world_anchor_b - checked.ground_b).norm();
+      checked.length = j.length;
+    }
+  }
+  if (j.def.type == JointType::Gear && ratio_changed) {
+    // The coupling holds from where the bodies are now: coordinate_1 + ratio · coordinate_2 at the new ratio.
+    const double c1 = j.joint_a == kNoJoint ? angleOf(w, j.a) : gearedCoordinate(w, w.joints[j.joint_a]);
+    const double c2 = j.joint_a == kNoJoint ? angleOf(w, j.b) : gearedCoordinate(w, w.joints[j.joint_b]);
+    j.gear_constant = c1 + checked.ratio * c2;
   }
   setJointDef(j, checked);
   for (uint32_t slot : {j.a, j.b, j.c, j.d})
@@ -325,6 +387,11 @@ JointState World::jointState(JointId id) const {
   }
   jointReaction(j, s.reaction_force, s.reaction_torque);
   s.broken = j.broken;
+  s.local_anchor_a = j.local_a;
+  s.local_anchor_b = j.local_b;
+  if (j.impulse_h > 0.0 && j.enable_motor &&
+      (j.def.type == JointType::Revolute || j.def.type == JointType::Wheel || j.def.type == JointType::Prismatic))
+    s.motor = j.impulses.motor / j.impulse_h;  // the motor's impulse over the last step
   return s;
 }
 

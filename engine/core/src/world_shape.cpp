@@ -5,6 +5,7 @@
 
 #include "rigidlab/error.h"
 #include "rigidlab/world.h"
+#include "shape_query.h"
 #include "world_impl.h"
 
 namespace rigidlab {
@@ -69,6 +70,7 @@ void WorldImpl::updateMass(Body& b, const char* field, double value) {
     mass = 1.0;  // a body without area: a unit point mass, so that it can still be dynamic
     inertia = 1.0;
   }
+  if (b.inertia_set) inertia = b.inertia;  // World::setInertia's, until the shapes change
   // A mass or inertia whose inverse is not finite (a denormal mass: 1/4.9e-324 = inf) or that
   // overflowed (density 1e308 on a large shape) would reach the solver as ∞ or 0·∞ = NaN.
   const auto usable = [](double x) { return std::isfinite(x) && x > 0.0 && std::isfinite(1.0 / x); };
@@ -130,6 +132,8 @@ uint32_t WorldImpl::attachShape(uint32_t body, const ShapeDef& def, const char* 
     s.one_way = def.one_way->normalized();
   }
   s.pre_solve = def.pre_solve;
+  s.tangent_speed = requireFinite("tangent_speed", def.tangent_speed);
+  s.rolling_resistance = requireNonNegative("rolling_resistance", def.rolling_resistance);
   s.body = b.id;
   uint32_t index;
   if (!free_shapes.empty()) {
@@ -145,6 +149,7 @@ uint32_t WorldImpl::attachShape(uint32_t body, const ShapeDef& def, const char* 
     shape_alive.push_back(1);
   }
   b.shapes.push_back(shapes[index].id);
+  b.inertia_set = false;  // the mass is the shapes' again
   countShape(shapes[index], +1);
   ++layout_version;
   shapesEdited();
@@ -202,10 +207,12 @@ void World::destroyShape(ShapeId id) {
     }
   w.contacts.resize(kept);
   w.contact_keys.resize(kept);
+  w.contact_surfaces.clear();  // index for index with the contacts no more
   std::erase_if(w.previous_contacts, refersToShape);
   Body& b = w.bodies[body];
   std::erase(b.shapes, id);
   w.releaseShape(id.index);
+  b.inertia_set = false;
   w.updateMass(b, "density", b.density);
   w.wakeIsland(body);
 }
@@ -237,6 +244,7 @@ void World::setShapeDensity(ShapeId id, double density) {
   const double old = s.density;
   s.density = density;
   Body& b = w.bodies[s.body.index];
+  b.inertia_set = false;
   try {
     w.updateMass(b, "density", density);
   } catch (...) {
@@ -305,6 +313,76 @@ void World::setShapePreSolve(ShapeId id, bool on) {
   impl_->countShape(s, -1);
   s.pre_solve = on;
   impl_->countShape(s, +1);
+}
+
+namespace {
+
+// What touches the shape wakes (its contacts' bodies), and the shape's own body.
+void wakeShapeContacts(WorldImpl& w, uint32_t shape) {
+  for (const Contact& c : w.contacts)
+    if (c.shape_a == shape || c.shape_b == shape) {
+      w.wakeIsland(c.a);
+      w.wakeIsland(c.b);
+    }
+  w.wakeIsland(w.shapes[shape].body.index);
+}
+
+}  // namespace
+
+void World::setShapeSurface(ShapeId id, double tangent_speed, double rolling_resistance) {
+  WorldImpl& w = *impl_;
+  w.requireUnlocked("setShapeSurface");
+  BodyShape& s = w.get(id);
+  requireFinite("tangent_speed", tangent_speed);
+  requireNonNegative("rolling_resistance", rolling_resistance);
+  w.countShape(s, -1);
+  s.tangent_speed = tangent_speed;
+  s.rolling_resistance = rolling_resistance;
+  w.countShape(s, +1);
+  wakeShapeContacts(w, id.index);  // a belt switched on moves what rests on it
+}
+
+void World::setShapeGeometry(ShapeId id, const Shape& geometry) {
+  WorldImpl& w = *impl_;
+  w.requireUnlocked("setShapeGeometry");
+  BodyShape& s = w.get(id);
+  if (geometry.type != s.geometry.type)
+    throw InputError("shape", std::string("a ") + shapeTypeName(s.geometry.type) + " stays a " +
+                                  shapeTypeName(s.geometry.type) + ", got a " + shapeTypeName(geometry.type) +
+                                  " (remove the shape and add another)");
+  Shape checked = WorldImpl::validatedShape(geometry);
+  Body& b = w.bodies[s.body.index];
+  std::swap(s.geometry, checked);
+  const bool inertia_set = b.inertia_set;
+  b.inertia_set = false;
+  try {
+    w.updateMass(b, "density", s.density);
+  } catch (...) {
+    std::swap(s.geometry, checked);
+    b.inertia_set = inertia_set;
+    throw;
+  }
+  ++w.layout_version;
+  ++w.static_version;
+  w.shapesEdited();
+  wakeShapeContacts(w, id.index);
+}
+
+std::optional<RayHit> World::shapeRayCast(ShapeId id, const Vec2& from, const Vec2& to) const {
+  const WorldImpl& w = *impl_;
+  const BodyShape& s = const_cast<WorldImpl&>(w).get(id);
+  requireFinite("from", from);
+  requireFinite("to", to);
+  const std::optional<ShapeRayHit> h = rigidlab::rayCastShape(s.geometry, w.bodies[s.body.index].xf, from, to, 1.0);
+  if (!h) return std::nullopt;
+  return RayHit{id, s.body, h->point, h->normal, h->fraction};
+}
+
+double World::distanceBetween(ShapeId a, ShapeId b, Vec2* on_a, Vec2* on_b) const {
+  WorldImpl& w = const_cast<WorldImpl&>(*impl_);
+  const BodyShape &sa = w.get(a), &sb = w.get(b);
+  return rigidlab::shapeDistance(sa.geometry, w.bodies[sa.body.index].xf, sb.geometry, w.bodies[sb.body.index].xf, on_a,
+                                 on_b);
 }
 
 std::vector<ShapeId> World::createChain(BodyId body, const ChainDef& def) {

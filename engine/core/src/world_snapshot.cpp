@@ -76,6 +76,7 @@ WorldSnapshot World::snapshot() const {
   auto copy = std::make_shared<WorldImpl>(w);
   cloneForces(*copy);
   copy->pre_solve = nullptr;  // the restoring world keeps its own (world_snapshot.h)
+  copy->should_collide = nullptr;
   WorldSnapshot s;
   s.state_ = std::move(copy);
   return s;
@@ -104,6 +105,7 @@ void World::restore(const WorldSnapshot& snapshot) {
   }
   cloneForces(*next);
   next->pre_solve = w.pre_solve;
+  next->should_collide = w.should_collide;
   next->locked = false;
   next->def.threads = w.def.threads;  // not simulation state (WorldDef::threads): the world keeps its own
   next->pool = std::move(w.pool);

@@ -28,6 +28,10 @@ struct Scene::Impl {
   sol::object on_step, check, on_key, on_draw, exact;  // the hook functions, or nil
   sol::table handles;       // body uid → its Lua handle, so the same body is always the same object
   sol::table user_data;     // body uid → body.user_data (any Lua value; the engine never reads it)
+  // Shape and joint key (handleKey) → shape.user_data, joint.user_data. Set (or cleared) when a
+  // shape or joint is made, so a reused slot starts without the old one's; a joint's stays
+  // readable after it broke (OnJointBreak).
+  sol::table shape_user_data, joint_user_data;
   // Shape and joint key (handleKey) → handle, weak-valued: the same shape or joint is the same
   // object while a script holds it (usable as a table key), and a forgotten one costs nothing.
   sol::table shape_handles, joint_handles;
@@ -46,6 +50,7 @@ struct Scene::Impl {
   // key → function), made on first use, so a scene without them holds nothing for events.
   sol::object on_contact_begin, on_contact_end, on_hit, on_sensor_begin, on_sensor_end, on_joint_break;
   sol::table pre_solve_functions;
+  sol::object should_collide;  // ShouldCollide, or nil (the world's collision filter calls it)
   double event_seconds = 0.0, event_cpu_seconds = 0.0;  // Scene::eventSeconds, eventCpuSeconds
 
   // --- sandbox mod hooks (scene_controls.cpp, lua_mouse_event.cpp)

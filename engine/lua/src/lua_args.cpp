@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "bindings.h"
+#include "porting_names.h"
 #include "rigidlab/error.h"
 #include "rigidlab/lua/scene_text.h"
 
@@ -69,10 +70,23 @@ std::string fieldName(lua_State* L, std::string_view what, const sol::object& ke
   return key.as<std::string>();
 }
 
+namespace {
+
+// What to say after an unknown name: " (did you mean 'x'?)" for `meant` (a similar function's
+// name) or a typo (closestName), " (rigidlab calls it 'x')" for a name of LÖVE or Box2D
+// (porting_names.h), or "".
+std::string suggestion(std::string_view name, const std::vector<std::string_view>& candidates, std::string meant) {
+  if (!meant.empty()) return " (did you mean '" + meant + "'?)";
+  if (const std::string ported = portingSuggestion(name, candidates); !ported.empty()) return " (" + ported + ")";
+  meant = closestName(name, candidates);
+  return meant.empty() ? "" : " (did you mean '" + meant + "'?)";
+}
+
+}  // namespace
+
 void noSuchField(lua_State* L, std::string_view what, const std::string& k, const std::vector<std::string_view>& names,
                  std::string hint) {
-  if (hint.empty()) hint = closestName(k, names);
-  fail(L, what, "has no field '" + k + "'" + (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
+  fail(L, what, "has no field '" + k + "'" + suggestion(k, names, std::move(hint)));
 }
 
 void requireWritable(lua_State* L, std::string_view what, const std::string& k,
@@ -173,11 +187,10 @@ Options::Options(lua_State* L, std::string_view function, const sol::object& arg
   lua_pop(L, 1);
   if (!unknown.empty()) {
     std::sort(unknown.begin(), unknown.end());
-    std::string suggestion = closestName(unknown.front(), known);
-    for (const auto& [name, meant] : synonyms)
-      if (name == unknown.front()) suggestion = std::string(meant);
-    lua::fail(L, function, "unknown option '" + unknown.front() + "'" +
-                               (suggestion.empty() ? "" : " (did you mean '" + suggestion + "'?)"));
+    std::string meant;
+    for (const auto& [name, synonym] : synonyms)
+      if (name == unknown.front()) meant = std::string(synonym);
+    lua::fail(L, function, "unknown option '" + unknown.front() + "'" + suggestion(unknown.front(), known, meant));
   }
 }
 

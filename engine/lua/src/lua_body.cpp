@@ -1,15 +1,17 @@
 // Body handles in Lua: fields (read, and write where it makes sense) and methods.
 //
-//   read/write  position (body origin), angle, velocity, angular_velocity, mass, type, static, name,
-//               awake, linear_damping, angular_damping, gravity_scale, fixed_rotation, bullet,
-//               enabled, user_data; and for all its shapes restitution, friction, static_friction,
-//               sensor, category, mask, group
-//   read only   id, center (world centre of mass), local_center, inertia, density, shapes, removed;
+//   read/write  position (body origin), angle, velocity, angular_velocity, mass, inertia, type, static,
+//               name, awake, linear_damping, angular_damping, gravity_scale, gravity (nil: the
+//               world's), sleeping_allowed, fixed_rotation, bullet, enabled, user_data; and for all
+//               its shapes restitution, friction, static_friction, sensor, category, mask, group
+//   read only   id, center (world centre of mass), local_center, density, shapes, removed, world;
 //               for a one-shape body shape ("circle" | "polygon" | "capsule" | ...), radius, vertices
 //   methods     body:apply_impulse(j [, point])          point: world, default the centre of mass
 //               body:apply_force(f [, point [, duration]])  duration default: the next step only
-//               body:add_shape{...} (lua_shape.cpp), body:set_target{position, angle, time},
-//               body:joints() (lua_joint.cpp), body:contacts() (lua_contact.cpp)
+//               body:apply_torque(t [, duration]), body:apply_angular_impulse(j)
+//               body:world_point(p), local_point(p), world_vector(v), local_vector(v), velocity_at(p)
+//               body:reset_mass(), body:add_shape{...} (lua_shape.cpp), body:set_target{position,
+//               angle, time}, body:joints() (lua_joint.cpp), body:contacts() (lua_contact.cpp)
 // A misspelt field is an error naming the closest valid one.
 #include <algorithm>
 
@@ -48,16 +50,44 @@ Vec2 vecArg(lua_State* L, std::string_view function, std::string_view what, cons
   return checkVec(L, function, what, v);
 }
 
-int applyImpulse(lua_State* L) {
-  sol::stack_object self(L, 1), j(L, 2), p(L, 3);
-  const LuaBody& b = selfBody(L, self, "apply_impulse");
-  requireIdle(L, *b.scene, "apply_impulse");
-  const BodyId id = liveBody(L, b, "apply_impulse");
-  World& w = worldOf(L, b, "apply_impulse");
-  const Vec2 impulse = vecArg(L, "apply_impulse", "impulse", j);
-  const Vec2 point = isMissing(p) ? w.body(id).center : vecArg(L, "apply_impulse", "point", p);
+// The optional `duration` argument of apply_force and apply_torque: > 0 seconds, default the next
+// step only.
+double durationArg(lua_State* L, std::string_view function, const sol::stack_object& d) {
+  if (isMissing(d)) return World::kNextStep;
+  const double duration = numberArg(L, function, "duration", d);
+  if (!(duration > 0)) fail(L, function, "duration must be > 0, got " + formatNumber(duration));
+  return duration;
+}
+
+// A method that acts on the body: its handle checked, the world not inside a step, the body alive.
+struct ActedOn {
+  World& world;
+  BodyId id;
+};
+ActedOn actedOn(lua_State* L, const char* function) {
+  const LuaBody& b = selfBody(L, sol::stack_object(L, 1), function);
+  requireIdle(L, *b.scene, function);
+  const BodyId id = liveBody(L, b, function);
+  return {worldOf(L, b, function), id};
+}
+
+// A constant force and torque on the body for `duration` (apply_force, apply_torque).
+void addConstantForce(lua_State* L, const char* function, const ActedOn& on, const Vec2& force,
+                      const std::optional<Vec2>& local, double torque, double duration) {
   try {
-    w.applyImpulse(id, impulse, point);
+    on.world.addForce(std::make_unique<ConstantForce>(force, local, torque), on.id, {}, duration);
+  } catch (const InputError& e) {
+    fail(L, function, e.what());
+  }
+}
+
+int applyImpulse(lua_State* L) {
+  const ActedOn on = actedOn(L, "apply_impulse");
+  sol::stack_object j(L, 2), p(L, 3);
+  const Vec2 impulse = vecArg(L, "apply_impulse", "impulse", j);
+  const Vec2 point = isMissing(p) ? on.world.body(on.id).center : vecArg(L, "apply_impulse", "point", p);
+  try {
+    on.world.applyImpulse(on.id, impulse, point);
   } catch (const InputError& e) {
     fail(L, "apply_impulse", e.what());
   }
@@ -65,32 +95,63 @@ int applyImpulse(lua_State* L) {
 }
 
 int applyForce(lua_State* L) {
-  sol::stack_object self(L, 1), f(L, 2), p(L, 3), d(L, 4);
-  const LuaBody& b = selfBody(L, self, "apply_force");
-  requireIdle(L, *b.scene, "apply_force");
-  const BodyId id = liveBody(L, b, "apply_force");
-  World& w = worldOf(L, b, "apply_force");
+  const ActedOn on = actedOn(L, "apply_force");
+  sol::stack_object f(L, 2), p(L, 3), d(L, 4);
   const Vec2 force = vecArg(L, "apply_force", "force", f);
   std::optional<Vec2> local;  // a world point is attached to the body where it is now
-  if (!isMissing(p)) local = w.body(id).xf.applyInverse(vecArg(L, "apply_force", "point", p));
-  double duration = World::kNextStep;
-  if (!isMissing(d)) {
-    duration = numberArg(L, "apply_force", "duration", d);
-    if (!(duration > 0)) fail(L, "apply_force", "duration must be > 0, got " + formatNumber(duration));
+  if (!isMissing(p)) local = on.world.body(on.id).xf.applyInverse(vecArg(L, "apply_force", "point", p));
+  addConstantForce(L, "apply_force", on, force, local, 0.0, durationArg(L, "apply_force", d));
+  return 0;
+}
+
+int applyTorque(lua_State* L) {
+  const ActedOn on = actedOn(L, "apply_torque");
+  sol::stack_object t(L, 2), d(L, 3);
+  const double torque = numberArg(L, "apply_torque", "torque", t);
+  addConstantForce(L, "apply_torque", on, Vec2::Zero(), std::nullopt, torque, durationArg(L, "apply_torque", d));
+  return 0;
+}
+
+int applyAngularImpulse(lua_State* L) {
+  const ActedOn on = actedOn(L, "apply_angular_impulse");
+  on.world.applyAngularImpulse(on.id, numberArg(L, "apply_angular_impulse", "impulse", sol::stack_object(L, 2)));
+  return 0;
+}
+
+// body:world_point(p) and the other frame helpers: the body's transform now (origin, angle).
+enum class Frame { WorldPoint, LocalPoint, WorldVector, LocalVector, VelocityAt };
+template <Frame F>
+int frameHelper(lua_State* L) {
+  static constexpr const char* kNames[] = {"world_point", "local_point", "world_vector", "local_vector", "velocity_at"};
+  const char* function = kNames[static_cast<int>(F)];
+  const LuaBody& b = selfBody(L, sol::stack_object(L, 1), function);
+  const Body& body = worldOf(L, b, function).body(liveBody(L, b, function));
+  const bool vector = F == Frame::WorldVector || F == Frame::LocalVector;
+  const Vec2 x = vecArg(L, function, vector ? "vector" : "point", sol::stack_object(L, 2));
+  switch (F) {
+    case Frame::WorldPoint: pushVec(L, body.xf.apply(x)); break;
+    case Frame::LocalPoint: pushVec(L, body.xf.applyInverse(x)); break;
+    case Frame::WorldVector: pushVec(L, body.xf.q.apply(x)); break;
+    case Frame::LocalVector: pushVec(L, body.xf.q.applyInverse(x)); break;
+    case Frame::VelocityAt: pushVec(L, body.pointVelocity(x)); break;  // v + ω × (p − c), p world
   }
+  return 1;
+}
+
+int resetMass(lua_State* L) {
+  const ActedOn on = actedOn(L, "reset_mass");
   try {
-    w.addForce(std::make_unique<ConstantForce>(force, local), id, {}, duration);
+    on.world.resetMass(on.id);
   } catch (const InputError& e) {
-    fail(L, "apply_force", e.what());
+    failCore(L, "reset_mass", e);
   }
   return 0;
 }
 
 int setTarget(lua_State* L) {
-  const LuaBody& b = selfBody(L, sol::stack_object(L, 1), "set_target");
-  requireIdle(L, *b.scene, "set_target");
-  const BodyId id = liveBody(L, b, "set_target");
-  World& w = worldOf(L, b, "set_target");
+  const ActedOn on = actedOn(L, "set_target");
+  World& w = on.world;
+  const BodyId id = on.id;
   const Options o(L, "set_target", sol::stack_object(L, 2), api::kTargetOptions);
   const Body& body = w.body(id);
   const Vec2 position = o.vec("position", body.position());
@@ -110,6 +171,14 @@ int setTarget(lua_State* L) {
 lua_CFunction bodyMethod(std::string_view name) {
   static const NamedFunction kMethods[] = {{"apply_impulse", guarded<applyImpulse>},
                                            {"apply_force", guarded<applyForce>},
+                                           {"apply_torque", guarded<applyTorque>},
+                                           {"apply_angular_impulse", guarded<applyAngularImpulse>},
+                                           {"world_point", guarded<frameHelper<Frame::WorldPoint>>},
+                                           {"local_point", guarded<frameHelper<Frame::LocalPoint>>},
+                                           {"world_vector", guarded<frameHelper<Frame::WorldVector>>},
+                                           {"local_vector", guarded<frameHelper<Frame::LocalVector>>},
+                                           {"velocity_at", guarded<frameHelper<Frame::VelocityAt>>},
+                                           {"reset_mass", guarded<resetMass>},
                                            {"add_shape", addShapeMethod},
                                            {"set_target", guarded<setTarget>},
                                            {"joints", bodyJointsMethod},
@@ -167,6 +236,7 @@ sol::object bodyIndex(lua_State* L, const LuaBody& self, const sol::stack_object
   const std::string k = fieldName(L, "body", key);
   if (k == "removed") return sol::make_object(L, !worldOf(L, self, "body.removed").isValid(self.id));
   if (k == "id") return sol::make_object(L, self.uid);
+  if (k == "world") return self.scene->world_handle;
   if (const lua_CFunction f = bodyMethod(k)) {
     lua_pushcfunction(L, f);
     return sol::stack::pop<sol::object>(L);
@@ -190,6 +260,8 @@ sol::object bodyIndex(lua_State* L, const LuaBody& self, const sol::stack_object
   if (k == "linear_damping") return sol::make_object(L, b.linear_damping);
   if (k == "angular_damping") return sol::make_object(L, b.angular_damping);
   if (k == "gravity_scale") return sol::make_object(L, b.gravity_scale);
+  if (k == "gravity") return b.own_gravity ? makeVec(L, b.gravity) : sol::make_object(L, sol::lua_nil);
+  if (k == "sleeping_allowed") return sol::make_object(L, b.sleeping_allowed);
   if (k == "fixed_rotation") return sol::make_object(L, b.fixed_rotation);
   if (k == "bullet") return sol::make_object(L, b.bullet);
   if (k == "enabled") return sol::make_object(L, b.enabled);
@@ -229,6 +301,12 @@ void bodyNewIndex(lua_State* L, const LuaBody& self, const sol::stack_object& ke
       const double m = numberArg(L, function, "value", value);
       if (!(m > 0)) fail(L, function, "must be > 0, got " + formatNumber(m));
       w.setMass(id, m);
+    } else if (k == "inertia") {
+      w.setInertia(id, checkNumber(L, function, "", value, Range::Positive));
+    } else if (k == "gravity") {
+      w.setBodyGravity(id, isMissing(value) ? std::nullopt : std::optional(vecArg(L, function, "value", value)));
+    } else if (k == "sleeping_allowed") {
+      w.setSleepingAllowed(id, checkBool(L, function, "", value));
     } else if (k == "static") {
       w.setType(id, checkBool(L, function, "", value) ? BodyType::Static : BodyType::Dynamic);
     } else if (k == "type") {

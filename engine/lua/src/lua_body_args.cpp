@@ -119,6 +119,8 @@ BodyDef readBodyDef(const Options& o, BodyType fallback) {
   d.bullet = o.boolean("bullet", false);
   d.enabled = o.boolean("enabled", true);
   d.awake = o.boolean("awake", true);
+  if (o.has("gravity")) d.gravity = o.vec("gravity");
+  d.sleeping_allowed = o.boolean("sleeping_allowed", true);
   d.name = o.string("name", "", kNameBytes);
   return d;
 }
@@ -144,6 +146,8 @@ ShapeDef readShapeOptions(const Options& o, bool area) {
   d.material.static_friction = o.nonNegative("static_friction", d.material.friction);
   d.sensor = o.boolean("sensor", false);
   d.filter = readFilter(o, Filter{});
+  d.tangent_speed = o.number("tangent_speed", 0.0);
+  d.rolling_resistance = o.nonNegative("rolling_resistance", 0.0);
   readShapeEventOptions(o, d);
   return d;
 }

@@ -32,15 +32,56 @@ void requirePreSolveFunction(lua_State* L, std::string_view function, std::strin
 
 uint64_t keyOf(ShapeId id) { return handleKey(id.index, id.generation); }
 
+// Lua called from inside the world's step (pre_solve functions, ShouldCollide): under the step's
+// Lua budget, a Lua error thrown as ScriptError naming `what` (the step is then undone).
+template <typename Body>
+void duringStep(Scene::Impl& s, std::string_view what, Body body) {
+  ScriptHost& host = *s.host;
+  const Budget::Scope budget(host.budget(), Budget::Kind::Force);
+  const auto error = host.run([&] { body(host); });
+  if (error) throw ScriptError(host.errorText(*error, what));
+}
+
+// A number a pre_solve function wrote into its contact table (field `k`: the table's metatable
+// gives the contact's values, a write puts the field in the table itself), checked as the shape
+// option of that name is; `was` if none was written.
+double writtenNumber(lua_State* L, int table, const char* k, double was, Range range) {
+  lua_pushstring(L, k);
+  lua_rawget(L, table);
+  const sol::object v = sol::stack::pop<sol::object>(L);
+  if (v.get_type() == sol::type::lua_nil) return was;
+  const double x = checkNumber(L, "pre_solve", std::string("contact.") + k, v, range);
+  if (std::string_view(k) == "restitution" && x > 1.0)
+    fail(L, "pre_solve", "contact.restitution must be between 0 and 1, got " + formatNumber(x));
+  return x;
+}
+
+// What the pre_solve functions wrote into the contact table (api::kPreSolveWritable), for this
+// step: friction (and static_friction with it unless that is written too), restitution,
+// tangent_speed; enabled = false disables the contact as returning false does.
+bool readPreSolveWrites(lua_State* L, int table, ContactInfo& c) {
+  const double friction = writtenNumber(L, table, "friction", c.friction, Range::NonNegative);
+  const double static_friction = writtenNumber(L, table, "static_friction", c.static_friction, Range::NonNegative);
+  if (static_friction != c.static_friction) c.static_friction = static_friction;
+  else if (friction != c.friction) c.static_friction = friction;  // one friction, as LÖVE and Box2D have
+  c.friction = friction;
+  c.restitution = writtenNumber(L, table, "restitution", c.restitution, Range::NonNegative);
+  c.tangent_speed = writtenNumber(L, table, "tangent_speed", c.tangent_speed, Range::Finite);
+  lua_pushliteral(L, "enabled");
+  lua_rawget(L, table);
+  const bool disabled = lua_type(L, -1) == LUA_TBOOLEAN && !lua_toboolean(L, -1);
+  lua_pop(L, 1);
+  return !disabled;
+}
+
 // The pre-solve callback of the scene's world: the pre_solve functions of the contact's shapes, in
 // the order a, b, each given the same contact table; the first that returns false disables the
-// contact (and the other is not asked). Runs inside the step, under the step's Lua budget.
-bool runPreSolve(Scene::Impl& s, const ContactInfo& c) {
-  ScriptHost& host = *s.host;
-  lua_State* L = host.L();
-  const Budget::Scope budget(host.budget(), Budget::Kind::Force);
+// contact (and the other is not asked). What they wrote into the table's writable fields
+// (readPreSolveWrites) holds for this step. Runs inside the step, under the step's Lua budget.
+bool runPreSolve(Scene::Impl& s, ContactInfo& c) {
+  lua_State* L = s.host->L();
   bool enabled = true;
-  const auto error = host.run([&] {
+  duringStep(s, "pre_solve", [&](ScriptHost& host) {
     const int top = lua_gettop(L);
     pushContact(L, s, contactView(*s.world, c));
     for (const ShapeId id : {c.shape_a, c.shape_b}) {
@@ -58,9 +99,9 @@ bool runPreSolve(Scene::Impl& s, const ContactInfo& c) {
       enabled = !(lua_type(L, -1) == LUA_TBOOLEAN && !lua_toboolean(L, -1));
       lua_pop(L, 1);
     }
+    enabled = readPreSolveWrites(L, top + 1, c) && enabled;
     lua_settop(L, top);
   });
-  if (error) throw ScriptError(host.errorText(*error, "pre_solve"));
   return enabled;
 }
 
@@ -70,7 +111,7 @@ void keepPreSolve(lua_State* L, Scene::Impl& scene, ShapeId id, const sol::objec
   if (!scene.pre_solve_functions.valid()) {
     if (!on) return;
     scene.pre_solve_functions = sol::table(L, sol::create);
-    scene.world->setPreSolve([&scene](const ContactInfo& c) { return runPreSolve(scene, c); });
+    scene.world->setPreSolve([&scene](ContactInfo& c) { return runPreSolve(scene, c); });
   }
   scene.pre_solve_functions.raw_set(static_cast<lua_Integer>(keyOf(id)), on ? f : sol::make_object(L, sol::lua_nil));
   scene.world->setShapePreSolve(id, on);
@@ -156,6 +197,56 @@ const std::vector<EventHook>& eventHooks() {
                                                {"OnSensorEnd", &Scene::Impl::on_sensor_end},
                                                {"OnJointBreak", &Scene::Impl::on_joint_break}};
   return hooks;
+}
+
+namespace {
+
+// The world's collision filter for a scene that defines ShouldCollide(shape_a, shape_b): called
+// during the step (broad_phase.cpp), once per pair whose boxes begin to overlap, under the step's
+// Lua budget as pre_solve functions are; false keeps the pair apart while their boxes overlap.
+bool runShouldCollide(Scene::Impl& s, ShapeId a, ShapeId b) {
+  lua_State* L = s.host->L();
+  bool collide = true;
+  duringStep(s, "ShouldCollide", [&](ScriptHost& host) {
+    const int top = lua_gettop(L);
+    s.should_collide.push(L);
+    pushShapeHandle(L, s, a);
+    pushShapeHandle(L, s, b);
+    ++host.calls;
+    lua_call(L, 2, 1);
+    collide = !(lua_type(L, -1) == LUA_TBOOLEAN && !lua_toboolean(L, -1));
+    lua_settop(L, top);
+  });
+  return collide;
+}
+
+}  // namespace
+
+void installShouldCollide(Scene::Impl& scene) {
+  if (!isFunction(scene.should_collide)) return;
+  scene.world->setShouldCollide([&scene](ShapeId a, ShapeId b) { return runShouldCollide(scene, a, b); });
+}
+
+std::vector<std::string> unraisedEventWarnings(const Scene::Impl& scene) {
+  const World& w = *scene.world;
+  bool contact = false, hit = false;
+  for (const BodyId id : w.bodyIds())
+    for (const ShapeId s : w.body(id).shapes) {
+      contact = contact || w.shape(s).contact_events;
+      hit = hit || w.shape(s).hit_events;
+    }
+  std::vector<std::string> out;
+  const auto warn = [&](const char* hook, const sol::object& f, bool raised, const char* option) {
+    if (!isFunction(f) || raised) return;
+    out.push_back(std::string("warning: ") + hook + " is defined, but no shape has " + option +
+                  " = true, so it is never called: give " + option +
+                  " = true to the shapes whose contacts it wants (unlike Box2D v3, rigidlab raises contact "
+                  "events only for the shapes that ask, so a scene without them pays nothing)");
+  };
+  warn("OnContactBegin", scene.on_contact_begin, contact, "contact_events");
+  warn("OnContactEnd", scene.on_contact_end, contact, "contact_events");
+  warn("OnHit", scene.on_hit, hit, "hit_events");
+  return out;
 }
 
 void pushEventCalls(Scene::Impl& s, std::vector<EventCall>& calls) {

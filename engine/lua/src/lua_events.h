@@ -6,6 +6,7 @@
 // and a scene that defines no event hook makes no Lua call and builds no table after a step.
 #pragma once
 
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -38,6 +39,14 @@ struct EventHook {
   sol::object Scene::Impl::*slot;
 };
 const std::vector<EventHook>& eventHooks();
+
+// Gives the scene's world a collision filter that calls ShouldCollide(shape_a, shape_b) when the
+// scene defines it (Scene::Impl::should_collide); nothing otherwise.
+void installShouldCollide(Scene::Impl& scene);
+// After PopulateWorld: a warning for each contact hook (OnContactBegin, OnContactEnd, OnHit) the
+// scene defines while none of its shapes can raise its event, naming the option that would
+// (contact_events, hit_events). Made by walking the shapes once, at load.
+std::vector<std::string> unraisedEventWarnings(const Scene::Impl& scene);
 
 // One call of an event hook: hook(world, args[first] [, args[second]]), args being the table
 // pushEventCalls leaves on the stack.

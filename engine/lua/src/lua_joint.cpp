@@ -1,10 +1,13 @@
 // Joint handles in Lua (world:add_revolute{...} and the other joint functions return one).
 //
 //   read        kind, a, b (nil: the world), angle, speed, translation, reaction_force,
-//               reaction_torque, anchor_a, anchor_b (world, now), broken, removed; per type length,
-//               ground_a, ground_b, ratio, joint_a, joint_b
-//   read/write  name, collide_connected, break_force, break_torque and the type's limits, motor,
-//               spring and offsets (the same names as its options; see JointField)
+//               reaction_torque, anchor_a, anchor_b (world, now), local_anchor_a, local_anchor_b
+//               (each body's coordinates), broken, removed; per type ground_a, ground_b, joint_a,
+//               joint_b, axis (prismatic, wheel: world, now), motor_torque (revolute, wheel),
+//               motor_force (prismatic), length_a, length_b (pulley: the ropes now)
+//   read/write  name, collide_connected, break_force, break_torque, user_data and the type's
+//               limits, motor, spring and offsets (the same names as its options; see JointField),
+//               length (distance; pulley: length_a + ratio · length_b), ratio (gear, pulley)
 //   methods     joint:remove(), joint:set_limits(lower, upper)
 #include "lua_joint.h"
 
@@ -167,6 +170,10 @@ int jointIndex(lua_State* L) {
     lua_pushcfunction(L, k == "remove" ? guarded<removeMethod> : guarded<setLimits>);
     return 1;
   }
+  if (k == "user_data") {  // also of a broken or removed joint: what the script gave it
+    scene.joint_user_data.raw_get<sol::object>(static_cast<lua_Integer>(handleKey(self.id.index, self.id.generation))).push(L);
+    return 1;
+  }
   const JointDef& def = w.joint(liveJoint(L, self, "joint." + k));
   const bool pinned = pinnedToWorld(def);
   if (k == "a" || k == "b") {
@@ -191,8 +198,18 @@ int jointIndex(lua_State* L) {
     // The core's a is the world for a joint pinned to it: its anchors are the other way round.
     const Vec2& on_a = pinned ? s.world_anchor_b : s.world_anchor_a;
     const Vec2& on_b = pinned ? s.world_anchor_a : s.world_anchor_b;
+    const Vec2& local_a = pinned ? s.local_anchor_b : s.local_anchor_a;
+    const Vec2& local_b = pinned ? s.local_anchor_a : s.local_anchor_b;
     if (k == "reaction_force" || k == "anchor_a" || k == "anchor_b") {
       pushVec(L, k == "reaction_force" ? s.reaction_force : k == "anchor_a" ? on_a : on_b);
+    } else if (k == "local_anchor_a" || k == "local_anchor_b") {
+      pushVec(L, k == "local_anchor_a" ? local_a : local_b);
+    } else if (k == "axis") {
+      pushVec(L, s.axis);
+    } else if (k == "motor_torque" || k == "motor_force") {
+      lua_pushnumber(L, s.motor);
+    } else if (k == "length_a" || k == "length_b") {
+      lua_pushnumber(L, k == "length_a" ? (on_a - def.ground_a).norm() : (on_b - def.ground_b).norm());
     } else {
       lua_pushnumber(L, k == "angle" ? s.angle : k == "speed" ? s.speed : k == "translation" ? s.translation : s.reaction_torque);
     }
@@ -215,6 +232,11 @@ int jointNewIndex(lua_State* L) {
   requireIdle(L, *self.scene, function);
   World& w = liveWorld(L, *self.scene, function);
   JointDef def = w.joint(liveJoint(L, self, function));
+  if (k == "user_data") {
+    self.scene->joint_user_data.raw_set(static_cast<lua_Integer>(handleKey(self.id.index, self.id.generation)),
+                                        sol::object(value));
+    return 0;
+  }
   if (k == "name") {
     if (value.get_type() != sol::type::string) fail(L, function, "must be a string, got " + describe(value));
     def.name = boundedString(L, 3, function, "", kNameBytes);

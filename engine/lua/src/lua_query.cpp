@@ -77,11 +77,6 @@ void pushHit(lua_State* L, Scene::Impl& scene, const RayHit& h) {
   lua_setfield(L, -2, "fraction");
 }
 
-int pushOptionalHit(lua_State* L, Scene::Impl& scene, const std::optional<RayHit>& h) {
-  if (!h) return 0;  // nil
-  pushHit(L, scene, *h);
-  return 1;
-}
 
 int pushShapes(lua_State* L, Scene::Impl& scene, const std::vector<ShapeId>& shapes) {
   pushHandles(L, shapes, [&](ShapeId id) { return shapeHandle(L, scene, id); });
@@ -192,11 +187,18 @@ int explode(lua_State* L) {
 
 }  // namespace
 
+int pushOptionalHit(lua_State* L, Scene::Impl& scene, const std::optional<RayHit>& h) {
+  if (!h) return 0;  // nil
+  pushHit(L, scene, *h);
+  return 1;
+}
+
 lua_CFunction queryWorldMethod(std::string_view name) {
   static const NamedFunction kMethods[] = {
       {"ray_cast", guarded<rayCast>},     {"ray_cast_all", guarded<rayCastAll>}, {"query_box", guarded<queryBox>},
       {"query_point", guarded<queryPoint>}, {"overlap", guarded<overlap>},     {"shape_cast", guarded<shapeCast>},
-      {"explode", guarded<explode>},      {"contact_events", contactEventsMethod}};
+      {"explode", guarded<explode>},      {"contact_events", contactEventsMethod},
+      {"contacts", worldContactsMethod}};
   return lookUp(kMethods, name);
 }
 

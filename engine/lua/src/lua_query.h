@@ -10,5 +10,8 @@ namespace rigidlab::lua {
 
 // world:<name> for the queries and world:contact_events(); nullptr for another name.
 lua_CFunction queryWorldMethod(std::string_view name);
+// Pushes a ray or shape cast's hit as a table {body, shape, point, normal, fraction}
+// (api::kQueryHitFields), or nothing for none; returns the number of values pushed (0 or 1).
+int pushOptionalHit(lua_State* L, Scene::Impl& scene, const std::optional<RayHit>& hit);
 
 }  // namespace rigidlab::lua

@@ -14,6 +14,8 @@ namespace rigidlab::lua {
 sol::object shapeHandle(lua_State* L, Scene::Impl& scene, ShapeId id);
 void pushShapeHandle(lua_State* L, Scene::Impl& scene, ShapeId id);  // the same, pushed
 ShapeId liveShape(lua_State* L, const LuaShape& shape, std::string_view function);
+// Forgets the user_data kept under the shape's key (a shape made or removed).
+void forgetShapeUserData(Scene::Impl& scene, ShapeId id);
 // world:remove(shape) and shape:remove(): the shape and its host memory.
 void removeShape(lua_State* L, Scene::Impl& scene, ShapeId id);
 // body:add_shape{...}

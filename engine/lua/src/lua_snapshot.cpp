@@ -171,6 +171,18 @@ void restoreScene(lua_State* L, Scene::Impl& scene, const WorldSnapshot& snapsho
     }
     for (uint32_t uid : gone) t->raw_set(uid, sol::lua_nil);
   }
+  // The same for shapes' and joints' user_data, by their keys.
+  std::set<uint64_t> live_keys;
+  for (BodyId id : w.bodyIds())
+    for (ShapeId s : w.body(id).shapes) live_keys.insert(handleKey(s.index, s.generation));
+  for (JointId j : w.jointIds()) live_keys.insert(handleKey(j.index, j.generation));
+  for (sol::table* t : {&scene.shape_user_data, &scene.joint_user_data}) {
+    std::vector<lua_Integer> gone;
+    for (const auto& [key, value] : *t)
+      if (key.get_type() == sol::type::number && !live_keys.count(static_cast<uint64_t>(key.as<lua_Integer>())))
+        gone.push_back(key.as<lua_Integer>());
+    for (lua_Integer key : gone) t->raw_set(key, sol::lua_nil);
+  }
   for (JointId j : w.jointIds()) scene.broken_joints.erase(handleKey(j.index, j.generation));
   scene.host->charge(L, "restore", bodiesHostBytes(w));
 }

@@ -1,7 +1,8 @@
 // The `world` object scenes receive in PopulateWorld and the hooks (OnStep, Check, OnKey, OnMouse, ...).
 //
-//   fields   gravity (vec2), integrator (string), dt, solver, iterations, substeps, sleeping, exact_joints: read
-//            and write; time, step_count, title, controls (world.controls, scene_controls.cpp): read only
+//   fields   gravity (vec2), integrator (string), dt, solver, iterations, substeps, sleeping,
+//            exact_joints: read and write; time, step_count, title, locked (true inside a step: in
+//            a force or a pre_solve function), controls (world.controls, scene_controls.cpp): read only
 //   methods  add_spring, add_damper, add_force, bodies, find, remove, step, kinetic_energy,
 //            potential_energy here; the body functions (add_box, ...) in lua_world_bodies.cpp, the
 //            joint functions (add_revolute, ..., joints, find_joint) in lua_joint_create.cpp
@@ -127,7 +128,10 @@ int remove(lua_State* L) {
       if (b.scene != &scene) fail(L, "remove", "the body belongs to another scene");
       const BodyId id = liveBody(L, b, "remove");
       const size_t bytes = hostBytes(*scene.world, scene.world->body(id));
-      for (const ShapeId s : scene.world->body(id).shapes) forgetShapeEvents(scene, s);
+      for (const ShapeId s : scene.world->body(id).shapes) {
+        forgetShapeEvents(scene, s);
+        forgetShapeUserData(scene, s);
+      }
       scene.world->destroyBody(id);
       scene.host->release(bytes);
       scene.handles.raw_set(b.uid, sol::lua_nil);
@@ -218,6 +222,7 @@ sol::object worldIndex(lua_State* L, const LuaWorld& self, const sol::stack_obje
   if (k == "time") return sol::make_object(L, w.time());
   if (k == "step_count") return sol::make_object(L, w.stepCount());
   if (k == "title") return sol::make_object(L, self.scene->settings.title);
+  if (k == "locked") return sol::make_object(L, w.isStepping());
   if (k == "controls") {  // scene_controls.cpp
     pushControls(L, *self.scene);
     return sol::stack::pop<sol::object>(L);

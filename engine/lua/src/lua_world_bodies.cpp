@@ -13,6 +13,7 @@
 #include "bindings.h"
 #include "lua_body_args.h"
 #include "lua_events.h"
+#include "lua_shape.h"
 #include "rigidlab/error.h"
 
 namespace rigidlab::lua {
@@ -29,7 +30,13 @@ constexpr size_t kMaxChainPoints = 65536;
 // over the memory limit the body is removed again, as if it had not been made.
 void finishBody(lua_State* L, Scene::Impl& scene, const Options& o, BodyId id) {
   try {
-    for (const ShapeId shape : scene.world->body(id).shapes) attachShapeEvents(L, scene, o, shape);
+    const bool surface = o.hasAny(kShapeSurfaceOptions);
+    const double tangent_speed = o.number("tangent_speed", 0.0), rolling = o.nonNegative("rolling_resistance", 0.0);
+    for (const ShapeId shape : scene.world->body(id).shapes) {
+      attachShapeEvents(L, scene, o, shape);
+      forgetShapeUserData(scene, shape);  // a slot used before: nothing of the old shape's
+      if (surface) scene.world->setShapeSurface(shape, tangent_speed, rolling);
+    }
     scene.host->charge(L, o.function(), hostBytes(*scene.world, scene.world->body(id)));
   } catch (...) {
     scene.world->destroyBody(id);

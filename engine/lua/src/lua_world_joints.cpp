@@ -73,6 +73,63 @@ JointId jointOption(const Options& o, Scene::Impl& scene, std::string_view key) 
   return j->id;
 }
 
+// Each body's own anchor (local_anchor_a, local_anchor_b: body coordinates; the world's for the
+// world) instead of world anchors: refused together with them. A missing one is where the other
+// anchor is now (the joint starts satisfied); a distance or pulley joint's, the body's centre of
+// mass as for its world anchors, and a world end must be given. True if the local form was used.
+// `a`, `b`: the Lua bodies (b null: the world); the core's are swapped when pinned (d.a null).
+bool readLocalAnchors(const Options& o, const World& w, BodyId a, BodyId b, JointDef& d) {
+  const bool local = o.has("local_anchor_a") || o.has("local_anchor_b");
+  if (!local) return false;
+  const bool two = d.type == JointType::Distance || d.type == JointType::Pulley;
+  for (const char* world_form : {"anchor", "anchor_a", "anchor_b"})
+    if (o.has(world_form))
+      o.fail(world_form, std::string("and ") + (o.has("local_anchor_a") ? "local_anchor_a" : "local_anchor_b") +
+                             " cannot both be given: " + (two ? "anchor_a and anchor_b are world points" : "anchor is one world point for both bodies") +
+                             ", local_anchor_a and local_anchor_b each body's own point in its own coordinates; "
+                             "give one form or the other");
+  if (d.type == JointType::Motor && o.has("local_anchor_a") && o.has("linear_offset"))
+    o.fail("local_anchor_a", "and linear_offset cannot both be given: a motor joint's local_anchor_a is its target "
+                             "in a's coordinates, the linear offset");
+  const auto frame = [&](BodyId id) { return id.isNull() ? Transform{} : w.body(id).xf; };
+  const auto centre = [&](BodyId id) { return id.isNull() ? Vec2(Vec2::Zero()) : w.body(id).local_center; };
+  Vec2 la, lb;
+  if (two) {
+    if (b.isNull() && !o.has("local_anchor_b"))
+      o.fail("local_anchor_b", "is required: the joint holds a to the world, and this is its world point");
+    la = o.vec("local_anchor_a", centre(a));
+    lb = o.vec("local_anchor_b", centre(b));
+  } else if (o.has("local_anchor_a")) {
+    la = o.vec("local_anchor_a");
+    lb = o.has("local_anchor_b") ? o.vec("local_anchor_b") : frame(b).applyInverse(frame(a).apply(la));
+  } else {
+    lb = o.vec("local_anchor_b");
+    la = frame(a).applyInverse(frame(b).apply(lb));
+  }
+  const bool pinned = b.isNull();
+  d.local_anchor_a = pinned ? lb : la;
+  d.local_anchor_b = pinned ? la : lb;
+  return true;
+}
+
+// A gear of two bodies' angles (a, b) or of two joints (joint_a, joint_b).
+void readGeared(const Options& o, Scene::Impl& scene, JointDef& d) {
+  if (!o.has("a") && !o.has("b")) {
+    d.joint_a = jointOption(o, scene, "joint_a");
+    d.joint_b = jointOption(o, scene, "joint_b");
+    return;
+  }
+  for (const char* joint : {"joint_a", "joint_b"})
+    if (o.has(joint))
+      o.fail(joint, std::string("and ") + (o.has("a") ? "a" : "b") +
+                        " cannot both be given: a gear joins two joints (joint_a, joint_b) or two bodies' angles (a, b)");
+  if (!o.has("a") || !o.has("b"))
+    o.fail(o.has("a") ? "b" : "a", "is required: a gear of bodies joins the angles of two bodies, a and b");
+  const auto [a, b] = readBodies(o, scene, true);
+  d.a = a;
+  d.b = b;
+}
+
 int addJoint(lua_State* L, JointType type) {
   const char* function = jointFunction(type);
   Scene::Impl& scene = editedWorld(L, function);
@@ -83,14 +140,15 @@ int addJoint(lua_State* L, JointType type) {
   d.type = type;
   bool pinned = false;
   if (type == JointType::Gear) {
-    d.joint_a = jointOption(o, scene, "joint_a");
-    d.joint_b = jointOption(o, scene, "joint_b");
+    readGeared(o, scene, d);
   } else {
     const auto [a, b] = readBodies(o, scene, type == JointType::Pulley);
     pinned = b.isNull();
     d.a = pinned ? BodyId{} : a;
     d.b = pinned ? a : b;
-    if (type == JointType::Distance || type == JointType::Pulley) {
+    if (readLocalAnchors(o, w, a, b, d)) {
+      // The world anchors follow from the local ones (the core's createJoint).
+    } else if (type == JointType::Distance || type == JointType::Pulley) {
       // Default: the centres of mass; a world end must be given.
       const Vec2 anchor_a = o.vec("anchor_a", w.body(a).center);
       const Vec2 anchor_b = pinned ? o.vec("anchor_b") : o.vec("anchor_b", w.body(b).center);
@@ -119,6 +177,7 @@ int addJoint(lua_State* L, JointType type) {
                          (type == JointType::Prismatic ? "force" : "torque") + ")");
   if (type == JointType::Pulley && !(d.ratio > 0.0)) o.fail("ratio", "must be > 0, got " + formatNumber(d.ratio));
   if (type == JointType::Gear && d.ratio == 0.0) o.fail("ratio", "must not be 0");
+
   JointId id;
   try {
     id = w.createJoint(d);
@@ -126,6 +185,9 @@ int addJoint(lua_State* L, JointType type) {
     failCore(L, function, e, jointRenames(type, pinned));
   }
   chargeJoint(L, scene, function, id);
+  // user_data: the option's, or none (a slot used before keeps nothing of the old joint's).
+  scene.joint_user_data.raw_set(static_cast<lua_Integer>(handleKey(id.index, id.generation)),
+                                o.has("user_data") ? o.get("user_data") : sol::make_object(L, sol::lua_nil));
   jointHandle(L, scene, id).push(L);
   return 1;
 }

@@ -12,6 +12,7 @@
 #include "api_names.h"
 #include "bindings.h"
 #include "lua_args.h"
+#include "lua_contact.h"
 #include "lua_events.h"
 #include "lua_snapshot.h"
 #include "rigidlab/error.h"
@@ -279,8 +280,11 @@ void setUp(Scene::Impl& s) {
   registerJointType(L);
   registerControlsType(L);
   registerSnapshotType(L);
+  registerContactTypes(L);
   s.handles = s.host->lua().create_table();
   s.user_data = s.host->lua().create_table();
+  s.shape_user_data = s.host->lua().create_table();
+  s.joint_user_data = s.host->lua().create_table();
   s.shape_handles = makeWeakTable(L);
   s.joint_handles = makeWeakTable(L);
 }
@@ -344,6 +348,8 @@ std::unique_ptr<Scene::Impl> load(std::string_view source, const std::string& na
     s->on_draw = hook(*s, "OnDraw");
     s->exact = hook(*s, "Exact");
     for (const EventHook& h : eventHooks()) (*s).*h.slot = hook(*s, h.name.data());
+    s->should_collide = hook(*s, "ShouldCollide");
+    installShouldCollide(*s);
     s->on_mouse = hook(*s, "OnMouse");
     s->on_control = hook(*s, "OnControl");
     s->save_state = hook(*s, "SaveState");
@@ -355,6 +361,7 @@ std::unique_ptr<Scene::Impl> load(std::string_view source, const std::string& na
     throw SceneError(name + ": PopulateWorld is not defined (a scene must define function PopulateWorld(world))");
   call(*s, populate, "PopulateWorld", s->world_handle);
   readCameraFollow(*s);
+  for (const std::string& warning : unraisedEventWarnings(*s)) host.log(name + ": " + warning);
   return s;
 }
 
@@ -400,7 +407,8 @@ Scene::Impl::~Impl() {
   pre_solve_functions = sol::table();
   on_mouse = on_control = sol::object();
   save_state = load_state = sol::object();
-  handles = user_data = shape_handles = joint_handles = sol::table();
+  handles = user_data = shape_handles = joint_handles = shape_user_data = joint_user_data = sol::table();
+  should_collide = sol::object();
   world_handle = draw_handle = sol::object();
   draw = nullptr;
   host.reset();

@@ -200,6 +200,12 @@ void hex(Writer& w, uint64_t x) {
   w.raw(buffer);  // a hexadecimal literal is a Lua integer of these 64 bits
 }
 
+// `tangent_speed = ..., rolling_resistance = ..., ` where not 0.
+void surfaceFields(Writer& w, const BodyShape& s, const std::string& path) {
+  if (s.tangent_speed != 0.0) w.field("tangent_speed", path, s.tangent_speed);
+  if (s.rolling_resistance != 0.0) w.field("rolling_resistance", path, s.rolling_resistance);
+}
+
 // `category = ..., mask = ..., group = ..., sensor = true, ` where not at their defaults.
 void filterFields(Writer& w, const Filter& f, bool sensor) {
   const Filter d;
@@ -255,6 +261,7 @@ void writeShape(Writer& w, const BodyShape& s, const std::string& path, const Ve
   w.field("restitution", path, s.material.restitution);
   w.field("friction", path, s.material.friction);
   w.field("static_friction", path, s.material.static_friction);
+  surfaceFields(w, s, path);
   filterFields(w, s.filter, s.sensor);
   w.text.resize(w.text.size() - 2);
   w.raw("}");
@@ -317,6 +324,9 @@ bool writeBody(Writer& w, const World& world, const Body& b, int index, Skipped&
   if (b.linear_damping != defaults.linear_damping) more.field("linear_damping", path, b.linear_damping);
   if (b.angular_damping != defaults.angular_damping) more.field("angular_damping", path, b.angular_damping);
   if (b.gravity_scale != defaults.gravity_scale) more.field("gravity_scale", path, b.gravity_scale);
+  if (b.own_gravity) more.field("gravity", path, b.gravity);
+  if (!b.sleeping_allowed) more.raw("sleeping_allowed = false, ");
+  surfaceFields(more, first, path);
   if (b.fixed_rotation) more.raw("fixed_rotation = true, ");
   if (b.bullet) more.raw("bullet = true, ");
   if (!b.enabled) more.raw("enabled = false, ");
@@ -365,7 +375,11 @@ void writeJoint(Writer& w, const World& world, JointId id, int index, const std:
   j.raw("    {kind = ");
   j.string(jointTypeName(d.type));
   j.raw(", ");
-  if (d.type == JointType::Gear) {
+  if (d.type == JointType::Gear && d.joint_a.isNull()) {  // a gear of two bodies' angles
+    j.raw("a = " + std::to_string(body_index.at(d.a.index)) + ", ");
+    j.raw("b = " + std::to_string(body_index.at(d.b.index)) + ", ");
+    j.field("ratio", path, d.ratio);
+  } else if (d.type == JointType::Gear) {
     j.raw("joint_a = " + std::to_string(joint_index.at(d.joint_a.index)) + ", ");
     j.raw("joint_b = " + std::to_string(joint_index.at(d.joint_b.index)) + ", ");
     j.field("ratio", path, d.ratio);
@@ -496,6 +510,10 @@ std::optional<std::string> unsaved(const World& world, JointId id, const std::ma
   const JointDef& d = world.joint(id);
   const auto saved = [&](BodyId b) { return b.isNull() || body_index.count(b.index) > 0; };
   const auto dynamic = [&](BodyId b) { return !b.isNull() && world.body(b).isDynamic(); };
+  if (d.type == JointType::Gear && d.joint_a.isNull()) {
+    if (!saved(d.a) || !saved(d.b)) return "gear of a body not saved";
+    return std::nullopt;
+  }
   if (d.type == JointType::Gear) {
     if (!joint_index.count(d.joint_a.index) || !joint_index.count(d.joint_b.index)) return "gear of a joint not saved";
     return std::nullopt;

@@ -40,6 +40,17 @@ void bodyFields(BodyProps& edited, EditTracker& t) {
   t.track();
   inputDouble("gravity scale", &edited.gravity_scale);
   t.track();
+  // Its own gravity (BodyDef::gravity) in place of the world's.
+  bool own = edited.gravity.has_value();
+  if (ImGui::Checkbox("own gravity", &own)) edited.gravity = own ? std::optional(Vec2(0.0, -9.80665)) : std::nullopt;
+  t.track();
+  if (edited.gravity) {
+    ImGui::SameLine();
+    inputVec("[m/s2]", &*edited.gravity);
+    t.track();
+  }
+  ImGui::Checkbox("may sleep", &edited.sleeping_allowed);
+  t.track();
   ImGui::Checkbox("fixed rotation", &edited.fixed_rotation);
   t.track();
   ImGui::SameLine();
@@ -81,6 +92,10 @@ void shapeFields(const World& w, const Body& b, BodyProps& edited, PanelState& p
   t.track();
   int group = sp.filter.group;
   if (ImGui::InputInt("group", &group)) sp.filter.group = group;
+  t.track();
+  inputDouble("tangent speed [m/s]", &sp.tangent_speed, "%.4g");
+  t.track();
+  inputDouble("rolling resistance", &sp.rolling_resistance, "%.4g");
   t.track();
 }
 

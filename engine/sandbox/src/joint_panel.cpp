@@ -71,6 +71,8 @@ void limitMotorSpring(JointDef& e, EditTracker& t) {
     }
   }
   if (distance) {
+    inputDouble("length [m]", &e.length);
+    t.track();
     ImGui::Checkbox("length range (rope)", &e.enable_limit);
     t.track();
     if (e.enable_limit) {
@@ -126,8 +128,9 @@ void kindFields(JointDef& e, EditTracker& t) {
       t.track();
       break;
     case JointType::Pulley:
-    case JointType::Gear:
-      ImGui::TextColored(kDimColor, "ratio %.4g (fixed when made)", e.ratio);
+    case JointType::Gear:  // the coupling holds from where the bodies are when it changes
+      inputDouble("ratio", &e.ratio, "%.4g");
+      t.track();
       break;
     default:
       limitMotorSpring(e, t);

@@ -8,7 +8,8 @@ namespace rigidlab::sandbox {
 bool operator==(const ShapeProps& a, const ShapeProps& b) {
   return a.density == b.density && a.material.restitution == b.material.restitution &&
          a.material.friction == b.material.friction && a.material.static_friction == b.material.static_friction &&
-         a.filter == b.filter && a.sensor == b.sensor;
+         a.filter == b.filter && a.sensor == b.sensor && a.tangent_speed == b.tangent_speed &&
+         a.rolling_resistance == b.rolling_resistance;
 }
 
 bool operator==(const BodyProps& a, const BodyProps& b) {
@@ -16,7 +17,7 @@ bool operator==(const BodyProps& a, const BodyProps& b) {
          a.angular_velocity == b.angular_velocity && a.mass == b.mass && a.linear_damping == b.linear_damping &&
          a.angular_damping == b.angular_damping && a.gravity_scale == b.gravity_scale &&
          a.fixed_rotation == b.fixed_rotation && a.bullet == b.bullet && a.enabled == b.enabled &&
-         a.shapes == b.shapes && a.name == b.name;
+         a.shapes == b.shapes && a.name == b.name && a.gravity == b.gravity && a.sleeping_allowed == b.sleeping_allowed;
 }
 
 BodyProps captureProps(const World& world, BodyId id) {
@@ -34,9 +35,11 @@ BodyProps captureProps(const World& world, BodyId id) {
   p.fixed_rotation = b.fixed_rotation;
   p.bullet = b.bullet;
   p.enabled = b.enabled;
+  if (b.own_gravity) p.gravity = b.gravity;
+  p.sleeping_allowed = b.sleeping_allowed;
   for (const ShapeId sid : b.shapes) {
     const BodyShape& s = world.shape(sid);
-    p.shapes.push_back({s.density, s.material, s.filter, s.sensor});
+    p.shapes.push_back({s.density, s.material, s.filter, s.sensor, s.tangent_speed, s.rolling_resistance});
   }
   p.name = b.name;
   return p;
@@ -62,6 +65,8 @@ void applyProps(World& world, BodyId id, const BodyProps& p) {
       world.setShapeMaterial(shapes[i], want.material);
     if (!(s.filter == want.filter)) world.setShapeFilter(shapes[i], want.filter);
     if (s.sensor != want.sensor) world.setShapeSensor(shapes[i], want.sensor);
+    if (s.tangent_speed != want.tangent_speed || s.rolling_resistance != want.rolling_resistance)
+      world.setShapeSurface(shapes[i], want.tangent_speed, want.rolling_resistance);
   }
   if (!densities_changed && world.body(id).mass != p.mass) world.setMass(id, p.mass);
   world.setTransform(id, p.position, p.angle);
@@ -71,6 +76,8 @@ void applyProps(World& world, BodyId id, const BodyProps& p) {
   world.setLinearDamping(id, p.linear_damping);
   world.setAngularDamping(id, p.angular_damping);
   world.setGravityScale(id, p.gravity_scale);
+  world.setBodyGravity(id, p.gravity);
+  if (world.body(id).sleeping_allowed != p.sleeping_allowed) world.setSleepingAllowed(id, p.sleeping_allowed);
   world.setBullet(id, p.bullet);
   if (world.body(id).enabled != p.enabled) world.setEnabled(id, p.enabled);
   world.setName(id, p.name);
@@ -89,7 +96,7 @@ bool sameTunables(const JointDef& a, const JointDef& b) {
          a.motor_hertz == b.motor_hertz && a.motor_damping == b.motor_damping &&
          a.linear_offset == b.linear_offset && a.angular_offset == b.angular_offset &&
          a.linear_velocity == b.linear_velocity && a.angular_velocity == b.angular_velocity &&
-         a.max_force == b.max_force && a.max_torque == b.max_torque;
+         a.max_force == b.max_force && a.max_torque == b.max_torque && a.length == b.length && a.ratio == b.ratio;
 }
 
 UndoHistory::Ref UndoHistory::refFor(BodyId id) {
@@ -118,7 +125,10 @@ UndoHistory::JointSnapshot UndoHistory::jointSnapshotOf(const World& world, Join
   JointSnapshot j;
   j.ref = jointRefFor(id);
   j.def = world.joint(id);
-  if (j.def.type == JointType::Gear) {
+  if (j.def.type == JointType::Gear && j.def.joint_a.isNull()) {  // a gear of two bodies' angles
+    j.a = refFor(j.def.a);
+    j.b = refFor(j.def.b);
+  } else if (j.def.type == JointType::Gear) {
     j.joint_a = jointRefFor(j.def.joint_a);
     j.joint_b = jointRefFor(j.def.joint_b);
   } else {
@@ -151,6 +161,8 @@ UndoHistory::Snapshot UndoHistory::snapshotOf(const World& world, BodyId id) {
   s.def.fixed_rotation = b.fixed_rotation;
   s.def.bullet = b.bullet;
   s.def.enabled = b.enabled;
+  if (b.own_gravity) s.def.gravity = b.gravity;
+  s.def.sleeping_allowed = b.sleeping_allowed;
   s.velocity = b.velocity;
   s.angular_velocity = b.angular_velocity;
   for (const ShapeId sid : b.shapes) {
@@ -161,6 +173,8 @@ UndoHistory::Snapshot UndoHistory::snapshotOf(const World& world, BodyId id) {
     d.material = shape.material;
     d.filter = shape.filter;
     d.sensor = shape.sensor;
+    d.tangent_speed = shape.tangent_speed;
+    d.rolling_resistance = shape.rolling_resistance;
     s.shapes.push_back(d);
   }
   for (const ForceId fid : world.forceIds()) {
@@ -199,6 +213,12 @@ void UndoHistory::restoreJoints(World& world, const std::vector<JointSnapshot>& 
   for (const JointSnapshot& j : joints) {
     JointDef def = j.def;
     bool ok = true;
+    if (def.type == JointType::Gear && !j.joint_a) {  // a gear of two bodies, from their angles now
+      def.a = body(j.a, ok);
+      def.b = body(j.b, ok);
+      if (ok) joint_refs_[j.ref] = world.createJoint(def);
+      continue;
+    }
     if (def.type == JointType::Gear) {
       ok = liveJoint(world, *j.joint_a) && liveJoint(world, *j.joint_b);
       if (!ok) continue;

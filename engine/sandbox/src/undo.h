@@ -28,6 +28,7 @@ struct ShapeProps {
   Material material;
   Filter filter;
   bool sensor = false;
+  double tangent_speed = 0.0, rolling_resistance = 0.0;
   friend bool operator==(const ShapeProps&, const ShapeProps&);
 };
 
@@ -43,6 +44,8 @@ struct BodyProps {
   double mass = 1.0;             // [kg]
   double linear_damping = 0.0, angular_damping = 0.0, gravity_scale = 1.0;
   bool fixed_rotation = false, bullet = false, enabled = true;
+  std::optional<Vec2> gravity;  // its own (BodyDef::gravity), or the world's
+  bool sleeping_allowed = true;
   std::vector<ShapeProps> shapes;  // in the body's order
   std::string name;
 

@@ -51,6 +51,9 @@ struct BodyDef {
   double linear_damping = 0.0;
   double angular_damping = 0.0;
   double gravity_scale = 1.0;                  // multiplies the world's gravity for this body
+  // This body's own gravity [m/s²], in place of the world's (planet gravity, a balloon that rises):
+  // integrated exactly as the world's is, still times gravity_scale. Not given: the world's.
+  std::optional<Vec2> gravity;
   bool fixed_rotation = false;                 // never turns (infinite inertia), contacts included
   // Swept against dynamic bodies too (every body is swept against static ones), so a fast small
   // body does not pass through a thin moving one.
@@ -62,6 +65,8 @@ struct BodyDef {
   // nothing until something touches, pushes or edits it, like a body that fell asleep (a pile
   // built at rest, debris waiting to be hit).
   bool awake = true;
+  // false: never falls asleep, nor lets its island sleep (a player's body, a sensor carrier).
+  bool sleeping_allowed = true;
   std::string name;                            // optional, for lookups and messages
 };
 
@@ -80,6 +85,9 @@ struct Body {
   // through contacts. Switching it back to dynamic (World::setType) clears the flag.
   bool frozen = false;
   bool fixed_rotation = false, bullet = false;  // BodyDef
+  bool own_gravity = false;       // BodyDef::gravity was given (or set): `gravity` replaces the world's
+  bool sleeping_allowed = true;   // BodyDef
+  bool inertia_set = false;       // World::setInertia overrides the shapes' inertia (until the shapes change)
 
   // State. The centre of mass is what is integrated; the origin transform follows from it.
   Transform xf;                  // body origin → world
@@ -110,6 +118,8 @@ struct Body {
 
   std::vector<ShapeId> shapes;  // in the order they were added (World::shape)
   std::string name;
+  // BodyDef::gravity, read only when own_gravity is set (kept out of the fields every step reads).
+  Vec2 gravity = Vec2::Zero();
 
   Vec2 position() const { return xf.p; }
   bool isStatic() const { return type == BodyType::Static; }
@@ -117,6 +127,8 @@ struct Body {
   bool isDynamic() const { return type == BodyType::Dynamic; }
   // Velocity of a world point attached to the body: v + ω × (p − c).
   Vec2 pointVelocity(const Vec2& world_point) const { return velocity + cross(angular_velocity, world_point - center); }
+  // The gravity acting on the body: its own or the world's, before gravity_scale.
+  Vec2 gravityOr(const Vec2& world_gravity) const { return own_gravity ? gravity : world_gravity; }
 };
 
 // A shape attached to a body, as the world holds it (World::shape). Change it through World's
@@ -128,6 +140,7 @@ struct BodyShape {
   bool contact_events = false, hit_events = false, pre_solve = false;  // ShapeDef
   double hit_speed = 1.0;
   std::optional<Vec2> one_way;  // ShapeDef (unit, body coordinates)
+  double tangent_speed = 0.0, rolling_resistance = 0.0;  // ShapeDef
   uint32_t chain = 0;      // chain segments: 1-based number of their chain (World::createChain), else 0
   ShapeId id;
   Material material;

@@ -98,10 +98,11 @@ class MouseForce final : public Force {
   MouseForceDef def_;
 };
 
-// A constant force, through the centre of mass or at a point fixed on the body (body.apply_force).
+// A constant force, through the centre of mass or at a point fixed on the body (body.apply_force),
+// and a constant torque (body.apply_torque).
 class ConstantForce final : public Force {
  public:
-  ConstantForce(const Vec2& force, std::optional<Vec2> local_point);
+  ConstantForce(const Vec2& force, std::optional<Vec2> local_point, double torque = 0.0);
   void evaluate(const ForceInput& in, ForceOutput& out) override;
   bool dependsOnState() const override { return local_point_.has_value(); }  // torque depends on the angle
   void draw(DebugDraw& dd, const BodyState& a, const BodyState* b) const override;
@@ -109,10 +110,12 @@ class ConstantForce final : public Force {
   std::unique_ptr<Force> clone() const override { return std::make_unique<ConstantForce>(*this); }
   const Vec2& force() const { return force_; }
   const std::optional<Vec2>& localPoint() const { return local_point_; }
+  double torque() const { return torque_; }
 
  private:
   Vec2 force_;
   std::optional<Vec2> local_point_;
+  double torque_ = 0.0;  // [N·m]
 };
 
 }  // namespace rigidlab

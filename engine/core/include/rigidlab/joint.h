@@ -48,6 +48,11 @@ struct JointDef {
   BodyId a, b;                           // b null: the world (a static point)
   Vec2 anchor_a = Vec2::Zero();          // on a; revolute, prismatic, weld, wheel, motor, friction: the one anchor
   Vec2 anchor_b = Vec2::Zero();          // on b; distance and pulley only (the others use anchor_a)
+  // Each body's anchor in its own coordinates (Box2D's localAnchorA, localAnchorB), instead of the
+  // world anchors above: given, they are used as they are (a's anchor held to b's even where they
+  // are apart at creation: the joint pulls them together). The world's coordinates for a null
+  // body. Motor joint: a's anchor is the target (the linear offset).
+  std::optional<Vec2> local_anchor_a, local_anchor_b;
   Vec2 axis = Vec2(1.0, 0.0);            // prismatic, wheel: direction of motion (fixed in a), not zero
   bool collide_connected = false;        // may a and b collide with each other?
   double break_force = std::numeric_limits<double>::infinity();   // [N]: above it the joint breaks
@@ -74,7 +79,7 @@ struct JointDef {
 
   // Distance: rest length (default: the anchors' distance at creation), limits, the spring's force
   // limit. min_length ≤ length ≤ max_length; a rope is max_length alone (min_length 0, no spring).
-  double length = -1.0;                  // < 0: the distance at creation
+  double length = -1.0;                  // < 0: the distance at creation; pulley: length_a + ratio · length_b
   double min_length = 0.0;
   double max_length = std::numeric_limits<double>::infinity();
   double max_spring_force = std::numeric_limits<double>::infinity();  // [N]
@@ -99,7 +104,8 @@ struct JointDef {
   double ratio = 1.0;                    // pulley and gear (gear: not 0)
 
   // Gear: two revolute or prismatic joints; each one's body b is geared (its body a is usually the
-  // ground). The gear's a and b are those bodies; set them null, they are filled in.
+  // ground). The gear's a and b are those bodies; set them null, they are filled in. Or two bodies
+  // a and b and no joints: their angles are geared, θ_a + ratio · θ_b constant (Chipmunk's gear).
   JointId joint_a, joint_b;
 };
 
@@ -113,6 +119,9 @@ struct JointState {
   Vec2 world_anchor_a = Vec2::Zero(), world_anchor_b = Vec2::Zero();
   Vec2 axis = Vec2(1.0, 0.0);  // prismatic, wheel: the axis now (it turns with a), unit, world
   bool broken = false;       // exceeded break_force or break_torque (the joint is removed)
+  Vec2 local_anchor_a = Vec2::Zero(), local_anchor_b = Vec2::Zero();  // in each body's coordinates (world: world)
+  // What the motor applied in the last step: revolute, wheel: torque [N·m]; prismatic: force [N].
+  double motor = 0.0;
 };
 
 }  // namespace rigidlab

@@ -147,6 +147,16 @@ struct ShapeDef {
   std::optional<Vec2> one_way;
   // The world's pre-solve callback (World::setPreSolve) is asked about this shape's contacts.
   bool pre_solve = false;
+  // Surface motion (a conveyor belt, a tank's track) [m/s]: the surface moves along itself at this
+  // speed, clockwise around the shape (Box2D v3's convention: a floor's top runs towards +x for a
+  // positive speed), and friction drags what touches it towards that speed. Two touching shapes'
+  // speeds add.
+  double tangent_speed = 0.0;
+  // Rolling resistance (Box2D v3's): a contact resists the relative turning of its bodies with a
+  // torque of at most c · r · N, c the larger of the two shapes' coefficients (≥ 0, usually ≤ 1),
+  // r the larger of their radii (circles and capsules; 0 for the others) and N the normal force.
+  // A disc rolling on a floor slows at c g m r² / (I + m r²): ⅔ c g for a uniform disc.
+  double rolling_resistance = 0.0;
 };
 
 }  // namespace rigidlab

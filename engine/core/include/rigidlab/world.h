@@ -194,6 +194,12 @@ struct ContactInfo {
   double tangent_impulses[2] = {0, 0};
   uint32_t ids[2] = {0, 0};  // feature ids, stable while the same features touch
   bool touching = false;     // a point overlapped at some step since the contact began (not only speculative)
+  // The contact's surface this step: the shapes' combined values (shape.h Material, ShapeDef), or
+  // what the pre-solve callback made of them. The callback may change friction (dynamic),
+  // static_friction, restitution and tangent_speed for this step only.
+  double friction = 0.0, static_friction = 0.0, restitution = 0.0;
+  double tangent_speed = 0.0;       // [m/s], the sum of the shapes' (ShapeDef::tangent_speed)
+  double rolling_resistance = 0.0;  // [m]: the coefficient times the larger radius (ShapeDef)
 };
 
 // A body frozen by the NaN firewall: which body, when, and why.
@@ -331,6 +337,15 @@ class World {
   void setTarget(BodyId id, const Vec2& position, double angle, double time);
   // Instant change of momentum by the impulse J at a world point (docs/design/thesis.md §1, J = Δp).
   void applyImpulse(BodyId id, const Vec2& impulse, const Vec2& world_point);
+  // Instant change of angular momentum: Δω = j / I [N·m·s].
+  void applyAngularImpulse(BodyId id, double impulse);
+  // BodyDef::gravity: the body's own gravity, or nullopt for the world's.
+  void setBodyGravity(BodyId id, std::optional<Vec2> gravity);
+  void setSleepingAllowed(BodyId id, bool on);  // BodyDef::sleeping_allowed; off wakes the body
+  // The moment of inertia about the centre of mass [kg·m²] > 0, in place of the shapes' (the mass
+  // and centre stay). Kept until the shapes or their densities change (or resetMass).
+  void setInertia(BodyId id, double inertia);
+  void resetMass(BodyId id);  // mass, centre and inertia from the shapes again
   // Wakes a sleeping body and the bodies of its island. Every edit above wakes its body too.
   void wake(BodyId id);
 
@@ -350,6 +365,16 @@ class World {
   void setShapeEvents(ShapeId id, bool contact_events, bool hit_events, double hit_speed);  // ShapeDef
   void setShapeOneWay(ShapeId id, std::optional<Vec2> normal);  // ShapeDef::one_way
   void setShapePreSolve(ShapeId id, bool on);
+  // ShapeDef::tangent_speed (finite) and rolling_resistance (≥ 0); wakes what touches the shape.
+  void setShapeSurface(ShapeId id, double tangent_speed, double rolling_resistance);
+  // New geometry for the shape, of the same kind (body coordinates, validated as createShape
+  // does): the body's mass is computed again and what touches it wakes.
+  void setShapeGeometry(ShapeId id, const Shape& geometry);
+  // The shape alone: the first point where the segment from → to enters it (a ray starting inside
+  // does not hit it; a chain segment is hit from its front only).
+  std::optional<RayHit> shapeRayCast(ShapeId id, const Vec2& from, const Vec2& to) const;
+  // Distance between two shapes' surfaces (0 when they overlap) and the closest points on each.
+  double distanceBetween(ShapeId a, ShapeId b, Vec2* on_a = nullptr, Vec2* on_b = nullptr) const;
   // A chain on a static body (docs/physics.md "Chains"): one chain segment per pair of consecutive
   // points, each knowing its neighbours so that bodies slide over the joints without catching.
   // One-sided: the surface faces the right of the direction from a point to the next, so ground
@@ -448,6 +473,7 @@ class World {
   // An explosion at `position` (ExplosionDef above); returns the bodies pushed, each once, in slot order.
   std::vector<BodyId> explode(const ExplosionDef& def);
   std::vector<ContactInfo> contacts() const;  // manifolds of the last step
+  std::vector<ContactInfo> touchingContacts() const;  // those touching (ContactInfo::touching)
   std::vector<ContactInfo> contactsOf(BodyId body) const;  // its touching contacts (separation ≤ 0 at some point since they began)
 
   // --- events of the last step (contact_events.cpp, sensor.cpp), in a deterministic order (by
@@ -463,6 +489,12 @@ class World {
     int count = 0;
     Vec2 points[2] = {Vec2::Zero(), Vec2::Zero()};
     Vec2 point = Vec2::Zero();   // the points' middle
+    double separations[2] = {0, 0};  // of each point [m] (< 0: overlap)
+    // The contact's surface: as ContactInfo's, of the step (a pre-solve callback's changes included).
+    double friction = 0.0, static_friction = 0.0, restitution = 0.0, tangent_speed = 0.0, rolling_resistance = 0.0;
+    // Begin and hit: each point's normal and tangent impulses from the contact solver [N·s]; an
+    // impact located inside the step adds its impulse to the totals below only.
+    double normal_impulses[2] = {0, 0}, tangent_impulses[2] = {0, 0};
     // Begin and hit: the closing speed along the normal at the start of the step [m/s] (> 0:
     // approaching); for a bounce located inside the step (ImpactHandling::Located), whose begin, hit
     // and end come together, the closing speed at the impact.
@@ -497,8 +529,16 @@ class World {
   // Pre-solve: called during the step, after the contacts are found and before they are solved, for
   // every contact of a shape flagged pre_solve; returning false disables the contact for this step.
   // It must not edit the world. An exception it throws undoes the step and propagates.
-  using PreSolveFn = std::function<bool(const ContactInfo&)>;
+  // The callback may change the contact's friction, static_friction, restitution and
+  // tangent_speed for this step (ContactInfo).
+  using PreSolveFn = std::function<bool(ContactInfo&)>;
   void setPreSolve(PreSolveFn callback);
+  // Collision filter (broad_phase.cpp): called once for each pair of shapes whose boxes begin to
+  // overlap and that the filters (Filter, sensors, joints) let collide; false keeps the pair from
+  // colliding until their boxes part. Kept with the world through snapshots, like pre-solve; the
+  // decisions of the pairs overlapping now are part of the state. Nullptr: none (the default).
+  using ShouldCollideFn = std::function<bool(ShapeId, ShapeId)>;
+  void setShouldCollide(ShouldCollideFn callback);
   void draw(DebugDraw& dd, const DrawOptions& options = {}) const;
 
   // --- snapshots (world_snapshot.h): the whole state, to come back to bit-exactly. Not allowed
