@@ -97,7 +97,7 @@ class ProblemScript {
     }
     std::string source;
     try {
-      source = readFile(file);
+      source = readFile(file, lua::ScriptLimits{}.source_bytes, "a module");
     } catch (const std::exception& e) {
       return luaL_error(L, "%s", e.what());
     }

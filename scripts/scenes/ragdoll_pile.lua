@@ -29,9 +29,13 @@ function Check(world)
   print(string.format("%d joints: worst gap %.2g m, past a limit by %.4f rad (at most), %.4f rad in the last 0.5 s",
                       #joints, worst_gap, worst_past, worst_past_final))
   check.that("36 joints, none lost", #world:joints() == 36)
-  -- Bounds from the measured values with margin: gap 1.3e-12 m; past a limit by 0.0137 rad while
-  -- they land, 0.0028 rad in the pile (2026-12-02).
+  -- Bounds from the measured values with margin: gap 1.2e-12 m; past a limit by 0.0403 rad while
+  -- they land, 0.0047 rad in the pile (2026-12-07). The landing's overshoot is the contact solvers'
+  -- soft limits (docs/physics.md): they take a ragdoll's joints the step it first touches. In the
+  -- air its joints are exact and keep its limbs' swing undamped, so it lands with more of it than
+  -- when the contact solvers held the joints all the way down (exact_joints = false: 0.0181 rad,
+  -- at step 70 of the same run, against 0.0403 at step 71).
   check.less("the pins hold", worst_gap, 1e-6)
-  check.less("limits respected while they land", worst_past, 0.03)
+  check.less("limits respected while they land", worst_past, 0.06)
   check.less("limits respected in the pile", worst_past_final, 0.01)
 end

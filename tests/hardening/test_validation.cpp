@@ -322,15 +322,19 @@ TEST_CASE("validation: every option of every add_* function, given every pool va
         CAPTURE(m);
         const std::string name = o.name;
         const bool size_or_mass = name == "width" || name == "height" || name == "radius" || name == "mass" ||
-                                  name == "density";
+                                  name == "density" || name == "falloff";
         const bool side = name == "width" || name == "height";
         const bool extreme_size = size_or_mass && o.accepts != Accepts::Never && finiteNumber(v) && (side || v.x > 0.0) && (v.x < 1e-6 || v.x > 1e6);
         if (extreme_size) {
           // A box the core cannot represent (width/height beyond 1e8 : 1) is refused naming a side;
           // a body whose mass or inertia (or their inverses) would not be finite (radius 1e-300,
           // mass 1e308 on a small triangle) naming its mass.
-          CHECK((m == "" || (m.starts_with("test.lua:4: " + std::string(f.name) + ": ") && clean(m) &&
+          // A size whose area, moment of inertia or square overflows (a radius of 1e308; explode's
+          // reach) is refused naming that option.
+          const std::string field = "test.lua:4: " + std::string(f.name) + ": ";
+          CHECK((m == "" || (m.starts_with(field) && clean(m) &&
                              (m.find("width") != std::string::npos || m.find("height") != std::string::npos ||
+                              m.starts_with(field + name + " ") ||
                               m.find(": mass and moment of inertia must be finite") != std::string::npos))));
         } else if (valid(o.accepts, v)) {
           CHECK(m == "");

@@ -78,7 +78,7 @@ run(2 run ${DIR}/../../scripts/scenes/free_fall.lua --load-state ${WORK}/state.s
 expect_match("another scene refused" "${err}" "is a snapshot of .*runner_scene.lua, not of .*free_fall.lua \\(--force")
 file(WRITE ${WORK}/junk.snap "RIGIDLAB-SNAPSHOT\nnot really")
 run(2 run --load-state ${WORK}/junk.snap)
-expect_match("a damaged snapshot" "${err}" "run: --load-state .*junk.snap: snapshot: ")
+expect_match("a damaged snapshot" "${err}" "run: --load-state: .*junk.snap: snapshot: ")
 run(2 run --load-state ${WORK}/missing.snap)
 expect_match("a missing snapshot" "${err}" "cannot read the file")
 run(2 run ${scene} --force)

@@ -78,7 +78,7 @@ function Check(world)
   for k in pairs(c) do names[#names + 1] = k end
   table.sort(names)
   check.that("contact fields", table.concat(names, ",") ==
-             "a,approach_speed,b,normal,normal_impulse,point,shape_a,shape_b,tangent_impulse", table.concat(names, ","))
+             "a,approach_speed,b,normal,normal_impulse,point,points,shape_a,shape_b,tangent_impulse", table.concat(names, ","))
   check.that("bodies and shapes", c.a.name == "floor" and c.b == A and c.shape_b == A.shapes[1] and c.shape_a.body == c.a)
   check.near("normal from a to b", c.normal.y, 1, 1e-12)
   check.near("approach speed g t0", c.approach_speed, g * 0.5, 1e-9)

@@ -321,16 +321,18 @@ void integrateInterval(WorldImpl& w, double t0, double h, const char* only) {
     const double part = h / steps;
     for (int k = 0; k < steps; ++k) integrateStep(w, t0 + k * part, k + 1 == steps ? h - k * part : part, only);
     if (!mechanismAttemptFailed(w)) return;
-    restoreMechanismAttempt(w);
     if (steps < kMaxMechanismSteps) {
+      restoreMechanismAttempt(w);
       steps *= 2;
       continue;
     }
     // Past kMaxMechanismSteps the islands that still drift are stiff (a long chain under tension:
     // its fastest waves turn faster than any affordable step): stepped as stiff mechanisms instead
     // (stable at any step), the others with the steps they need. Each round makes at least one
-    // more island stiff, so this ends.
-    stiffenDriftingMechanisms(w);
+    // more island stiff, so this ends; an island that fails although stiff (hostile inputs: no
+    // projection converges) keeps this attempt, its residual in StepStats::mechanism_residual.
+    if (!stiffenDriftingMechanisms(w)) return;
+    restoreMechanismAttempt(w);
     steps = mechanismSteps(w, h);
   }
 }

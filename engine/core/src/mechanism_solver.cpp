@@ -232,7 +232,8 @@ void Solver::forces(const Island& island, const Eigen::Vector3d* accel, Eigen::V
   motor_mode_.resize(island.motors.size(), 0);
   for (size_t q = 0; q < island.motors.size(); ++q) {
     use_[m + q] = motor_mode_[q] == 0;
-    motor_force_[q] = motor_mode_[q] * island.motors[q].max_force;
+    // (0, not 0 · max: a motor of unlimited force that holds its speed pushes with nothing more.)
+    motor_force_[q] = motor_mode_[q] == 0 ? 0.0 : motor_mode_[q] * island.motors[q].max_force;
   }
   rhs_.resize(static_cast<Eigen::Index>(rows));
   // J a + J̇ v with a the accelerations from every other force, the springs and the motors that push.
@@ -323,21 +324,36 @@ void Solver::beginStep(Island& island, double h) {
   motor_rate_.resize(island.motors.size());
   if (island.motors.empty()) return;
   evaluateRows(island);
-  bool catches = false;
+  // A motor off its speed is caught there by one impulse, with the joints and limits holding, if
+  // that impulse is within what its force gives in the step (|Λ| ≤ max h, Λ from the whole island:
+  // a crank's motor moves its weight about the pin, not about its centre of mass); else it pushes
+  // with its whole force. Motors whose catch asks too much push, and the others are caught again.
+  std::vector<int8_t> off_sign(island.motors.size(), 0);
   for (size_t q = 0; q < island.motors.size(); ++q) {
-    const Motor& mo = island.motors[q];
-    const Evaluated& row = rows_[m + q];
-    const double off = mo.speed - row.xdot;
-    // What it takes to reach its speed alone: |Δẋ| / (J M⁻¹ Jᵀ).
-    double k = 0.0;
-    for (int i = 0; i < row.count; ++i)
-      if (isMoving(island, row.body[i])) k += weighted(row.j[i], row.j[i], island.im[row.body[i]], island.ii[row.body[i]]);
-    const bool reaches = std::abs(off) <= island.speed_tolerance || (k > 0.0 && std::abs(off) / k <= mo.max_force * h);
-    motor_mode_[q] = reaches ? 0 : (off > 0.0 ? 1 : -1);
-    catches |= reaches && std::abs(off) > island.speed_tolerance;
-    motor_rate_[q] = -off;
+    const double off = island.motors[q].speed - rows_[m + q].xdot;
+    if (std::abs(off) > island.speed_tolerance) off_sign[q] = off > 0.0 ? 1 : -1;
   }
-  if (catches) velocityPasses(island);  // the catches, with the joints and limits holding
+  start_.assign(island.states.begin(), island.states.end());
+  for (size_t round = 0; round <= island.motors.size(); ++round) {
+    bool catches = false;
+    for (size_t q = 0; q < island.motors.size(); ++q) catches |= off_sign[q] != 0 && motor_mode_[q] == 0;
+    if (!catches) break;
+    for (size_t q = 0; q < island.motors.size(); ++q) motor_rate_[q] = rows_[m + q].xdot - island.motors[q].speed;
+    velocityPasses(island);
+    bool over = false;
+    for (size_t q = 0; q < island.motors.size(); ++q) {
+      if (off_sign[q] == 0 || motor_mode_[q] != 0) continue;
+      if (std::abs(impulse_[static_cast<Eigen::Index>(m + q)]) > island.motors[q].max_force * h) {
+        motor_mode_[q] = off_sign[q];
+        over = true;
+      }
+    }
+    if (!over) return;  // velocityPasses left motor_rate_ at the caught rates
+    std::copy(start_.begin(), start_.end(), island.states.begin());
+    impulse_.setZero(static_cast<Eigen::Index>(rows));
+    evaluateRows(island);
+  }
+  for (size_t q = 0; q < island.motors.size(); ++q) motor_rate_[q] = rows_[m + q].xdot - island.motors[q].speed;
 }
 
 Projection Solver::project(Island& island, double tolerance) {

@@ -644,14 +644,17 @@ bool mechanismAttemptFailed(const WorldImpl& w) {
   return false;
 }
 
-void stiffenDriftingMechanisms(WorldImpl& w) {
+bool stiffenDriftingMechanisms(WorldImpl& w) {
   MechanismStage& m = w.mechanisms.get();
+  bool changed = false;
   for (size_t q = 0; q < m.count; ++q) {
     MechanismStage::Exact& e = m.islands[q];
-    if (e.stiff || !(e.drift > kMaxMechanismDrift)) continue;
+    if (e.stiff || !(e.unprojected || e.drift > kMaxMechanismDrift)) continue;
     e.stiff = true;
+    changed = true;
     for (uint32_t k = 0; k < e.island.moving; ++k) m.moving[e.slots[k]] = kStiffMechanism;
   }
+  return changed;
 }
 
 void restoreMechanismAttempt(WorldImpl& w) {

@@ -63,7 +63,7 @@ constexpr double kProjected = 1e-12;
 void beginMechanismAttempt(WorldImpl& w);
 bool mechanismAttemptFailed(const WorldImpl& w);  // a staged island drifted too far
 void restoreMechanismAttempt(WorldImpl& w);
-void stiffenDriftingMechanisms(WorldImpl& w);     // those islands become stiff
+bool stiffenDriftingMechanisms(WorldImpl& w);     // those islands become stiff; false: none was left to
 void addMechanismForces(WorldImpl& w, double t, double weight, double h, bool staged_damping);
 void projectMechanisms(WorldImpl& w, double t_end);
 void settleMechanisms(WorldImpl& w);

@@ -389,7 +389,7 @@ JointState World::jointState(JointId id) const {
   s.broken = j.broken;
   s.local_anchor_a = j.local_a;
   s.local_anchor_b = j.local_b;
-  if (j.impulse_h > 0.0 && j.enable_motor &&
+  if (j.impulse_h > 0.0 && j.def.enable_motor &&
       (j.def.type == JointType::Revolute || j.def.type == JointType::Wheel || j.def.type == JointType::Prismatic))
     s.motor = j.impulses.motor / j.impulse_h;  // the motor's impulse over the last step
   return s;
