@@ -36,8 +36,19 @@ void show(Session& s) {
 
 void recordState(Session& s) {
   const World& w = s.world();
-  if (!s.timeline.due(w.stepCount())) return;
-  std::string bytes = serializeSnapshot(s.scene->snapshot());
+  if (!s.rewind_error.empty() || !s.timeline.due(w.stepCount())) return;
+  // The snapshot carries what the scene's SaveState returns: one that fails (returns what cannot be
+  // saved) turns rewinding off, says why, and leaves the scene running.
+  std::string bytes;
+  try {
+    bytes = serializeSnapshot(s.scene->snapshot());
+  } catch (const std::exception& e) {
+    s.rewind_error = e.what();
+    std::fprintf(stderr, "rigidlab: rewind off until the scene reloads: %s\n", s.rewind_error.c_str());
+    std::fflush(stderr);
+    s.setStatus("rewind off: " + s.rewind_error);
+    return;
+  }
   // Recording costs about 8 ms per MB of state (measured: a pyramid of 820 boxes, 1.3 MB, in 10 ms;
   // docs/sandbox.md "Rewind"): one state every k steps, k from the state's size (not from a
   // clock, so runs repeat), keeps the cost near 1 ms per step on average.

@@ -135,6 +135,7 @@ void adoptScene(Session& s, LoadResult r) {
   s.load_error.clear();
   s.run_error.clear();
   s.draw_error.clear();
+  s.rewind_error.clear();
   s.draw_truncated = false;
   s.scene_values = currentValues(*s.scene);
   if (keep_view) {

@@ -138,6 +138,7 @@ struct Session {
   std::string load_error;  // the last load failed: shown until the next good load
   std::string run_error;   // a script failed while running: the simulation paused
   std::string draw_error;  // OnDraw failed: it is not called again until the scene is reloaded
+  std::string rewind_error;  // SaveState failed: no state is recorded until the scene is reloaded
   bool draw_truncated = false;  // the last OnDraw asked for more than a frame draws (Scene::DrawReport)
   std::string status;      // a transient message (saved, undone, refused edit, ...)
   Clock::time_point status_until{};
