@@ -57,7 +57,7 @@ Outcome loop(const std::string& setup, const std::string& code, int circles, dou
 TEST_CASE("long calls: a 65 536-point chain is made in well under a second, sensor and all (it took 21 s)") {
   // The documented largest chain, made in one call under the default 1 s budget, and made a
   // sensor afterwards through the body (one call per shape was quadratic too: 36 s).
-  const Outcome o = timedWithin(1000.0, [] {
+  const Outcome o = timedWithin(1000.0 * kSlowdown, [] {
     load(R"lua(
       function PopulateWorld(world)
         local points = {}
@@ -69,11 +69,11 @@ TEST_CASE("long calls: a 65 536-point chain is made in well under a second, sens
         assert(#c.shapes == 65536 and c.shapes[1].sensor and c.shapes[65536].sensor)
         c.friction = 0.1
         world:remove(c)
-      end)lua");
+      end)lua", budgets(kSlowdown, kSlowdown));
   });
   MESSAGE("two 65 536-point chains, one made a sensor through the body, then removed: " << o.ms << " ms of CPU time");
   CHECK(o.message == "(no error)");
-  CHECK(o.ms < 1000.0);
+  CHECK(o.ms < 1000.0 * kSlowdown);
 }
 
 TEST_CASE("long calls: every long call a scene can make stops within one call of its hook's budget") {
@@ -105,11 +105,13 @@ TEST_CASE("long calls: every long call a scene can make stops within one call of
   for (const Case& c : cases) {
     const std::string name = c.name;
     CAPTURE(name);
-    const Outcome o = fastestWithin(100.0 + 150.0, [&] { return loop(c.setup, c.code, c.circles, 0.1); });
+    // One call past the budget: at most 150 ms in Release (kSlowdown × that under the sanitizers).
+    const double bound = 100.0 + 150.0 * kSlowdown;
+    const Outcome o = fastestWithin(bound, [&] { return loop(c.setup, c.code, c.circles, 0.1); });
     MESSAGE(name << ": stopped after " << o.ms << " ms of CPU time (" << o.ms - 100.0 << " ms past the budget)");
     CHECK(o.message.ends_with("OnKey: script ran longer than its budget of 100 ms (infinite loop?)"));
     CHECK(o.ms >= 100.0);
-    CHECK(o.ms < 100.0 + 150.0);
+    CHECK(o.ms < bound);
   }
 }
 
@@ -125,5 +127,5 @@ TEST_CASE("long calls: SaveState of a state of a million values stops at the bud
   const Outcome o = timed([&] { scene->snapshot(); });
   MESSAGE("SaveState of 1e6 values: " << o.ms << " ms of CPU time: " << o.message);
   CHECK(contains(o.message, "SaveState: script ran longer than its budget of 100 ms (infinite loop?)"));
-  CHECK(o.ms < 100.0 + 150.0);
+  CHECK(o.ms < 100.0 + 150.0 * kSlowdown);
 }

@@ -221,11 +221,12 @@ execute_process(COMMAND truncate -s 400M ${big}/golden/wide.txt RESULT_VARIABLE 
 expect_equal("truncate" "${truncated}" "0")
 run(1 test big)
 expect_match("a 400 MB golden" "${out}" "cannot read the golden trajectory: big/golden/wide.txt: the file is 419430400 bytes, more than the limit of 64 MiB for a golden trajectory")
-# A run whose trajectory would pass the limit stops recording it (20 000 bodies sampled every step).
-file(WRITE ${big}/wide.lua "scene = { golden = 'wide', golden_every = 1, duration = 0.5 }\nfunction PopulateWorld(world)\n  for i = 1, 20000 do world:add_box{ width = 0.5, height = 0.5, position = {i, 0}, static = true } end\nend\nfunction Check(world) end\n")
+# A run whose trajectory would pass the limit stops recording it (4 000 bodies sampled every step for
+# 180 steps: few enough add_box calls for the 1 s budget under the sanitizers).
+file(WRITE ${big}/wide.lua "scene = { golden = 'wide', golden_every = 1, duration = 3 }\nfunction PopulateWorld(world)\n  for i = 1, 4000 do world:add_box{ width = 0.5, height = 0.5, position = {i, 0}, static = true } end\nend\nfunction Check(world) end\n")
 file(REMOVE ${big}/golden/wide.txt)
 run(1 test big --update)
-expect_match("a trajectory past the limit" "${out}" "ERROR .*big/wide.lua.*scene.golden: the golden trajectory would be larger than the limit of 64 MiB \\([0-9]+ samples by step [0-9]+ of 30\\); sample less often")
+expect_match("a trajectory past the limit" "${out}" "ERROR .*big/wide.lua.*scene.golden: the golden trajectory would be larger than the limit of 64 MiB \\([0-9]+ samples by step [0-9]+ of 180\\); sample less often")
 if(EXISTS ${big}/golden/wide.txt)
   message(FATAL_ERROR "a golden trajectory past the limit was written")
 endif()

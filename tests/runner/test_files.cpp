@@ -92,7 +92,7 @@ TEST_CASE("files: a file over its limit is refused by its size before it is read
   const long peak = peakKiB();
   CHECK(refusal<lua::FileTooLarge>([&] { lua::readBoundedFile(s / "huge.txt", size_t{4} << 20, "huge.txt", "a scene file"); }) ==
         "huge.txt: the file is 5368709120 bytes, more than the limit of 4 MiB for a scene file");
-  CHECK(peakKiB() - peak < 1024);
+  CHECK(peakKiB() - peak < 8 * 1024);  // far below the 300 MB (the sanitizers' own allocations are a few MB)
   CHECK(refusal<lua::FileUnreadable>([&] { lua::readBoundedFile(s / "missing.txt", 10, "missing.txt", "x"); }) ==
         "missing.txt: cannot read the file (No such file or directory)");
   CHECK(refusal<lua::FileUnreadable>([&] { lua::readBoundedFile(s.dir, 10, "dir", "x"); }) ==
@@ -115,7 +115,7 @@ TEST_CASE("files: a state file is read header first: /dev/zero and an announced 
   long peak = peakKiB();
   CHECK(refusal<SnapshotError>([] { readStateFile("/dev/zero"); }) ==
         "/dev/zero: snapshot: not a rigidlab snapshot (no \"RIGIDLAB-SNAPSHOT\" header)");
-  CHECK(peakKiB() - peak < 1024);
+  CHECK(peakKiB() - peak < 8 * 1024);  // far below the 300 MB (the sanitizers' own allocations are a few MB)
 
   Scratch s;
   const std::string good = serializeSnapshot(smallWorld());
@@ -135,7 +135,7 @@ TEST_CASE("files: a state file is read header first: /dev/zero and an announced 
   CHECK(refusal<lua::FileTooLarge>([&] { readStateFile((s / "header_only.snap").string()); }) ==
         (s / "header_only.snap").string() +
             ": the header announces a state of 314572838 bytes, more than the limit of 256 MiB for a state file");
-  CHECK(peakKiB() - peak < 1024);
+  CHECK(peakKiB() - peak < 8 * 1024);  // far below the 300 MB (the sanitizers' own allocations are a few MB)
   // A state within the limit reads back; a truncated one is refused naming the file.
   write(s / "good.snap", good);
   CHECK(readStateFile((s / "good.snap").string()).stepCount() == 10);
@@ -167,7 +167,7 @@ TEST_CASE("files: a golden trajectory over 64 MiB is refused before it is read, 
   actual.samples.push_back({0, 0.0, {{1, "ball", 0, 1, 0, 0, 0, 0}}});
   const long peak = peakKiB();
   const auto mismatch = checkGolden(s / "scene.lua", "g", actual, 0.0, s / "diff");
-  CHECK(peakKiB() - peak < 1024);
+  CHECK(peakKiB() - peak < 8 * 1024);  // far below the 300 MB (the sanitizers' own allocations are a few MB)
   REQUIRE(mismatch);
   CHECK(*mismatch == "cannot read the golden trajectory: " + (s / "golden" / "g.txt").string() +
                          ": the file is 419430400 bytes, more than the limit of 64 MiB for a golden trajectory");
