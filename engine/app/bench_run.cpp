@@ -9,12 +9,14 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
 #include "report.h"
+#include "version.h"
 
 namespace rigidlab::app {
 
@@ -123,7 +125,10 @@ std::string runScene(const BenchScene& scene, int reps) {
     metrics = metrics == "{}" ? "{" + members.substr(2) + "}" : metrics.substr(0, metrics.size() - 1) + members + "}";
   }
   const double n = static_cast<double>(steps);
-  std::string s = "{\"engine\": \"rigidlab\", \"version\": \"0.1.0\", \"build\": \"release\", \"scene\": \"" +
+  std::string build = kVersion.build_type;
+  std::transform(build.begin(), build.end(), build.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::string s = "{\"engine\": \"rigidlab\", \"version\": \"" + std::string(kVersion.version) +
+                  "\", \"build\": \"" + build + "\", \"scene\": \"" +
                   scene.kind + "\", \"n\": " + std::to_string(scene.n) + ", \"dynamic_bodies\": " +
                   std::to_string(dynamic) + ", \"steps\": " + std::to_string(scene.steps) + ", \"reps\": " +
                   std::to_string(reps) + ", \"sleep\": false, \"settings\": {\"solver\": \"" +

@@ -52,12 +52,13 @@ const Golden kGolden[] = {
 // polygons (manifold.cpp polygonId: the points' warm start is no longer lost at a swap); and the 14
 // scenes with joints or body damping after jointed bodies that touch nothing were integrated with
 // their joints (WorldDef::exact_joints, mechanism_step.cpp) and RK4 took body damping into its
-// stages (body_acceleration.h); regenerate with --print-hashes after every physics change.
+// stages (body_acceleration.h), and chain.lua after the dense factorisation left the rows out of use
+// out of the matrix (mechanism_solver.cpp); regenerate with --print-hashes after every physics change.
     {"scripts/scenes/breakable_wall.lua", "add730bcdcada7d3"},
     {"scripts/scenes/capsule_slope.lua", "719562bc96af6256"},
     {"scripts/scenes/capsule_walker.lua", "22cde8c08b920ac3"},
     {"scripts/scenes/car.lua", "d5c425873a5f7288"},
-    {"scripts/scenes/chain.lua", "ed0492bb00bbec31"},
+    {"scripts/scenes/chain.lua", "4423100b7f039b7f"},
     {"scripts/scenes/collision_groups.lua", "0a0c6eb7e9d73462"},
     {"scripts/scenes/cradle_joints.lua", "4bda724f5985e75d"},
     {"scripts/scenes/experiment1_two_circles.lua", "1ba25daf59194227"},

@@ -136,7 +136,7 @@ struct Projection {
 // the island keeps its shape.
 class Solver {
  public:
-  static constexpr int kDenseRows = 48;
+  static constexpr int kDenseRows = 64;
 
   // The spring, constraint and motor forces on the moving bodies at the island's states: `accel`
   // holds each moving body's acceleration (a_x, a_y, α) from every other force; `force` receives
@@ -196,8 +196,13 @@ class Solver {
   };
   std::vector<Entry> entries_;
   bool dense_ = true;
+  // The dense path factors the rows in use only (a released limit is out of the matrix, not a
+  // row of identity in it): compact_[r] is row r's place among them, −1 out of use.
   Eigen::MatrixXd dense_a_;
   Eigen::LDLT<Eigen::MatrixXd> dense_ldlt_;
+  std::vector<int> compact_;
+  Eigen::VectorXd compact_b_, compact_x_;
+  double dense_shift_ = 0.0;  // the shift of the last dense factorisation (0: exact)
   Eigen::SparseMatrix<double> sparse_a_;  // lower triangle
   // Held by pointer: Eigen's sparse factorisations cannot be moved, and the islands' solvers live
   // in a vector.

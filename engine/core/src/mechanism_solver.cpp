@@ -12,7 +12,6 @@
 // changes the independent ones by a relative 1e-12.
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <numbers>
 
 #include "mechanism.h"
@@ -110,20 +109,26 @@ void Solver::factor(const Island& island) {
   used_ = use_;
   double largest = 0.0;
   if (dense_) {
-    dense_a_.setZero(m, m);
+    compact_.resize(static_cast<size_t>(m));
+    Eigen::Index n = 0;
+    for (Eigen::Index r = 0; r < m; ++r) {
+      compact_[r] = use_[r] ? static_cast<int>(n++) : -1;
+      if (!use_[r]) largest = 1.0;  // what a row out of use stands for: an identity diagonal
+    }
+    dense_a_.setZero(n, n);
     for (const Entry& e : entries_)
       if (use_[e.r] && use_[e.s])
-        dense_a_(e.r, e.s) += weighted(rows_[e.r].j[e.jr], rows_[e.s].j[e.js], island.im[e.body], island.ii[e.body]);
-    for (Eigen::Index r = 0; r < m; ++r) {
-      if (!use_[r]) dense_a_(r, r) = 1.0;
-      largest = std::max(largest, dense_a_(r, r));
-    }
+        dense_a_(compact_[e.r], compact_[e.s]) += weighted(rows_[e.r].j[e.jr], rows_[e.s].j[e.js], island.im[e.body], island.ii[e.body]);
+    for (Eigen::Index k = 0; k < n; ++k) largest = std::max(largest, dense_a_(k, k));
+    dense_shift_ = 0.0;
+    if (n == 0) return;
     dense_ldlt_.compute(dense_a_);
     const auto d = dense_ldlt_.vectorD();
     bool singular = false;
-    for (Eigen::Index r = 0; r < m; ++r) singular |= !(std::abs(d[r]) > kSingular * largest);
+    for (Eigen::Index k = 0; k < n; ++k) singular |= !(std::abs(d[k]) > kSingular * largest);
     if (singular && largest > 0.0) {
-      dense_a_.diagonal().array() += kShift * largest;
+      dense_shift_ = kShift * largest;
+      dense_a_.diagonal().array() += dense_shift_;
       dense_ldlt_.compute(dense_a_);
     }
     return;
@@ -160,7 +165,16 @@ void Solver::factor(const Island& island) {
 
 void Solver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   if (dense_) {
-    x = dense_ldlt_.solve(b);
+    const Eigen::Index n = dense_a_.rows();
+    compact_b_.resize(n);
+    for (size_t r = 0; r < compact_.size(); ++r)
+      if (compact_[r] >= 0) compact_b_[compact_[r]] = b[static_cast<Eigen::Index>(r)];
+    if (n > 0) compact_x_ = dense_ldlt_.solve(compact_b_);
+    x.resize(b.size());
+    for (size_t r = 0; r < compact_.size(); ++r) {
+      const Eigen::Index i = static_cast<Eigen::Index>(r);
+      x[i] = compact_[r] >= 0 ? compact_x_[compact_[r]] : b[i] / (1.0 + dense_shift_);
+    }
   } else {
     x = sparse_ldlt_->solve(b);
   }
