@@ -213,6 +213,8 @@ class Solver {
   std::vector<char> use_;            // per row: in the current factorisation
   std::vector<char> used_;           // the use_ of the last factorisation
   std::vector<double> motor_rate_;   // per motor: ẋ − speed at beginStep
+  double step_h_ = 0.0;              // the step beginStep began
+  std::vector<int8_t> motor_push_;   // per motor, this step: ±1 it pushed with its whole force (at some stage), 0 held
   std::vector<int8_t> motor_mode_;   // per motor, this step: 0 holds its speed, ±1 pushes that way
   std::vector<double> motor_force_;  // per motor: the force it pushes with when out of use (0: none)
   std::vector<State> start_;  // the states a Newton step starts from (its line search)

@@ -295,6 +295,7 @@ void Solver::forces(const Island& island, const Eigen::Vector3d* accel, Eigen::V
       if (use_[m + q] && std::abs(l) > max) {
         use_[m + q] = 0;
         motor_force_[q] = l > 0.0 ? max : -max;
+        if (q < motor_push_.size()) motor_push_[q] = l > 0.0 ? 1 : -1;
         changed = true;
       }
     }
@@ -332,9 +333,11 @@ double Solver::velocityResidual(const Island& island) {
 }
 
 void Solver::beginStep(Island& island, double h) {
+  step_h_ = h;
   const size_t m = island.equalities.size(), rows = m + island.motors.size();
   impulse_.setZero(static_cast<Eigen::Index>(rows));
   motor_mode_.assign(island.motors.size(), 0);
+  motor_push_.assign(island.motors.size(), 0);
   motor_rate_.resize(island.motors.size());
   if (island.motors.empty()) return;
   evaluateRows(island);
@@ -358,7 +361,7 @@ void Solver::beginStep(Island& island, double h) {
     for (size_t q = 0; q < island.motors.size(); ++q) {
       if (off_sign[q] == 0 || motor_mode_[q] != 0) continue;
       if (std::abs(impulse_[static_cast<Eigen::Index>(m + q)]) > island.motors[q].max_force * h) {
-        motor_mode_[q] = off_sign[q];
+        motor_mode_[q] = motor_push_[q] = off_sign[q];
         over = true;
       }
     }
@@ -496,6 +499,18 @@ void Solver::velocityPasses(Island& island) {
       const double sign = island.equalities[r].sign;
       if (use_[r] && sign != 0.0 && (impulse_[static_cast<Eigen::Index>(r)] + lambda_[static_cast<Eigen::Index>(r)]) * sign < 0.0) {
         use_[r] = 0;
+        released = true;
+      }
+    }
+    // A pushing motor caught at its speed where it crossed it: only while its step's impulse,
+    // the push and the catch together, stays within max · h; else it is left past its speed
+    // (the next step's beginStep turns it round with its whole force or catches it there).
+    for (size_t q = 0; q < island.motors.size() && q < motor_push_.size(); ++q) {
+      const Eigen::Index r = static_cast<Eigen::Index>(m + q);
+      if (!use_[m + q] || motor_push_[q] == 0) continue;
+      const double max = island.motors[q].max_force * step_h_;
+      if (std::abs(motor_push_[q] * max + impulse_[r] + lambda_[r]) > max) {
+        use_[m + q] = 0;
         released = true;
       }
     }
