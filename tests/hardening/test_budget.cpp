@@ -568,11 +568,15 @@ TEST_CASE("budget: a good scene on a loaded machine is not an infinite loop (its
   // 100 ms of its work takes about 400 ms of wall time, past a 250 ms budget of wall time. It was
   // stopped as an infinite loop when budgets counted wall time.
   const char* work = "function PopulateWorld(world)\n  local x = 0\n  for i = 1, N do x = x + i % 7 end\nend";
-  // N for about 100 ms of this machine's CPU time.
-  long n = 1000000;
-  const Outcome calibration = timed([&] { load("N = " + std::to_string(n) + "\n" + work, budgets(30, 30)); });
-  REQUIRE(calibration.message == "(no error)");
-  n = static_cast<long>(static_cast<double>(n) * 100.0 / std::max(calibration.ms, 1.0));
+  // N for about 100 ms of this machine's CPU time: the loop's cost per iteration from two runs, so
+  // that loading a scene (slow under the sanitizers) does not count as loop time.
+  const auto cost = [&](long count) {
+    const Outcome o = timed([&] { load("N = " + std::to_string(count) + "\n" + work, budgets(30, 30)); });
+    REQUIRE(o.message == "(no error)");
+    return o.ms;
+  };
+  const double per_iteration = std::max(cost(10000000) - cost(1000000), 1.0) / 9e6;
+  const long n = static_cast<long>(100.0 / per_iteration);
 
   cpu_set_t all, one;
   REQUIRE(pthread_getaffinity_np(pthread_self(), sizeof all, &all) == 0);
