@@ -23,14 +23,7 @@ BodyId box(World& w, double width, double height, Vec2 position, double mass = 1
   return w.createBody(d);
 }
 
-JointId revolute(World& w, BodyId a, BodyId b, Vec2 anchor) {
-  JointDef d;
-  d.type = JointType::Revolute;
-  d.a = a;
-  d.b = b;
-  d.anchor_a = anchor;
-  return w.createJoint(d);
-}
+using test::revolute;
 
 // A horizontal chain of `links` boxes of `length`, the first pinned to the world at the origin.
 struct Chain {
@@ -46,14 +39,7 @@ Chain makeChain(World& w, int links, double length, double mass) {
   return c;
 }
 
-double largestGap(const World& w, const Chain& c) {
-  double gap = 0.0;
-  for (JointId j : c.pins) {
-    const JointState s = w.jointState(j);
-    gap = std::max(gap, (s.world_anchor_a - s.world_anchor_b).norm());
-  }
-  return gap;
-}
+double largestGap(const World& w, const Chain& c) { return test::largestGap(w, c.pins); }
 
 }  // namespace
 

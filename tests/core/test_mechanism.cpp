@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "rigidlab/world.h"
+#include "test_util.h"
 
 using namespace rigidlab;
 
@@ -24,23 +25,8 @@ BodyId link(World& w, double width, double height, Vec2 position, double mass) {
   return w.createBody(d);
 }
 
-JointId pin(World& w, BodyId a, BodyId b, Vec2 anchor) {
-  JointDef d;
-  d.type = JointType::Revolute;
-  d.a = a;
-  d.b = b;
-  d.anchor_a = anchor;
-  return w.createJoint(d);
-}
-
-double largestGap(const World& w, const std::vector<JointId>& pins) {
-  double gap = 0.0;
-  for (JointId j : pins) {
-    const JointState s = w.jointState(j);
-    gap = std::max(gap, (s.world_anchor_a - s.world_anchor_b).norm());
-  }
-  return gap;
-}
+using test::largestGap;
+using test::revolute;
 
 }  // namespace
 
@@ -52,11 +38,11 @@ TEST_CASE("exact joints: a 1000 kg load on a 30-link chain of 1 kg links keeps e
   BodyId previous;
   for (int i = 0; i < 30; ++i) {
     const BodyId l = link(w, 0.5, 0.1, {0.5 * i + 0.25, 0.0}, 1.0);
-    pins.push_back(pin(w, l, previous, {0.5 * i, 0.0}));
+    pins.push_back(revolute(w, l, previous, {0.5 * i, 0.0}));
     previous = l;
   }
   const BodyId load = link(w, 1.0, 1.0, {15.5, 0.0}, 1000.0);
-  pins.push_back(pin(w, load, previous, {15.0, 0.0}));
+  pins.push_back(revolute(w, load, previous, {15.0, 0.0}));
   double worst = 0.0, lowest = 0.0;
   for (int i = 0; i < 300; ++i) {
     w.step(kDt);
@@ -76,7 +62,7 @@ TEST_CASE("exact joints: off, or an island that touches something, leaves the jo
     def.exact_joints = exact;
     World w(def);
     const BodyId bob = link(w, 0.2, 0.2, {1.0, 0.0}, 1.0);
-    pin(w, bob, BodyId{}, {0.0, 0.0});
+    revolute(w, bob, BodyId{}, {0.0, 0.0});
     w.step(kDt);
     CHECK(w.stats().exact_joints == (exact ? 1 : 0));
   }
@@ -91,7 +77,7 @@ TEST_CASE("exact joints: off, or an island that touches something, leaves the jo
   bob.shape = makeBox(0.2, 0.2);
   bob.position = {0.0, -0.9};
   const BodyId b = w.createBody(bob);
-  pin(w, b, BodyId{}, {0.0, 0.0});
+  revolute(w, b, BodyId{}, {0.0, 0.0});
   for (int i = 0; i < 30; ++i) w.step(kDt);
   CHECK(w.stats().contacts > 0);
   CHECK(w.stats().exact_joints == 0);

@@ -1,6 +1,7 @@
 // Small helpers shared by the core tests.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <string>
@@ -54,6 +55,26 @@ class HookeToOrigin final : public Force {
  private:
   double k_;
 };
+
+// A revolute joint between a and b (null: the world) at a world anchor.
+inline JointId revolute(World& w, BodyId a, BodyId b, Vec2 anchor) {
+  JointDef d;
+  d.type = JointType::Revolute;
+  d.a = a;
+  d.b = b;
+  d.anchor_a = anchor;
+  return w.createJoint(d);
+}
+
+// The largest distance between the two anchors of any of the joints [m].
+inline double largestGap(const World& w, const std::vector<JointId>& joints) {
+  double gap = 0.0;
+  for (JointId j : joints) {
+    const JointState s = w.jointState(j);
+    gap = std::max(gap, (s.world_anchor_a - s.world_anchor_b).norm());
+  }
+  return gap;
+}
 
 // Least-squares slope of log(err) against log(dt): the observed order of convergence.
 inline double fittedOrder(const std::vector<double>& dts, const std::vector<double>& errs) {
