@@ -61,6 +61,7 @@ struct Oscillator {
 struct SpringRun {
   bool finite = true;           // never non-finite (nor frozen)
   long blowup_step = -1;        // first step with E > 1e6·E0 or a non-finite state (−1: never)
+  long watch_step = -1;         // step of the world's blow-up incident (energy_watch.h; −1: none)
   double max_ratio = 0;         // max E/E0
   double min_ratio = 1e300;     // min E/E0
   bool monotone = true;         // E_n ≤ E_{n−1}·(1 + 1e-9) at every step
@@ -75,6 +76,9 @@ SpringRun runOscillator(Integrator integrator, double k, double c, double x0, lo
   double previous = e0;
   for (long n = 1; n <= steps; ++n) {
     o.world.step(kDt);
+    if (r.watch_step < 0)
+      for (const Incident& incident : o.world.incidents())
+        if (!incident.frozen) r.watch_step = n;
     if (!o.healthy()) {
       r.finite = false;
       if (r.blowup_step < 0) r.blowup_step = n;
@@ -136,7 +140,8 @@ CaseResult stiffSpringThresholds(bool) {
   CaseResult r;
   r.name = "stiff_spring_thresholds";
   r.title = "Stiff springs: largest stable k per integrator (S2–S4)";
-  r.rule = "m = 1 kg, x0 = 0.01 m, 10 s at dt = 1/60; a run is stable if it stays finite with E ≤ 100·E0. "
+  r.rule = "m = 1 kg, x0 = 0.01 m, 10 s at dt = 1/60; a run is stable if it stays finite and the world reports no "
+           "blow-up (the energy watch, \"Blow-ups caught\"). "
            "PASS if semi-implicit Euler is stable at k = 12 996 (ωh = 1.9) and unstable at 15 876 (ωh = 2.1), RK4 "
            "stable at 25 000 (ωh = 2.64) and unstable at 32 400 (ωh = 3.0), and explicit Euler multiplies the "
            "energy by exactly 1 + (ωh)² per step on k = 4π² (1e-12 relative): the integrators are the textbook ones";
@@ -155,7 +160,7 @@ CaseResult stiffSpringThresholds(bool) {
     bool still = true;
     for (double k : ks) {
       const SpringRun s = runOscillator(integrator, k, 0.0, 0.01, kSteps);
-      const bool stable = s.finite && s.max_ratio <= 100.0;
+      const bool stable = s.finite && s.watch_step < 0;
       row.push_back(stable ? "S" : "–");
       if (stable && still) largest = k;
       still &= stable;
@@ -197,27 +202,38 @@ CaseResult stiffSpringImplicit(bool) {
   r.name = "stiff_spring_implicit";
   r.title = "Very stiff spring, k = 1e6 N/m at dt = 1/60 (S1)";
   r.rule = "m = 1 kg, x0 = 0.01 m (ωh = 16.7), 10 s. PASS if implicit_euler stays finite, its energy never "
-           "increases (E_n ≤ E_{n−1}·(1 + 1e-9)) and |x| ≤ x0. The others are reported: they are expected to blow up";
+           "increases (E_n ≤ E_{n−1}·(1 + 1e-9)), |x| ≤ x0 and the world reports no blow-up; and the world reports "
+           "a blow-up (the energy watch, \"Blow-ups caught\") within 8 steps for each explicit integrator";
   Table t;
   t.title = "per integrator";
-  t.header = {"integrator", "finite for 10 s", "step where E > 1e6·E0", "max E/E0", "energy never increases (1e-9 per step)", "max |x| [m]"};
-  bool pass = false, found = false;
+  t.header = {"integrator", "finite for 10 s", "step where E > 1e6·E0", "blow-up reported at step", "max E/E0",
+              "energy never increases (1e-9 per step)", "max |x| [m]"};
+  bool pass = true, found = false;
+  const auto step = [](long n) { return n < 0 ? std::string("never") : std::to_string(n); };
   for (const std::string& name : integrators()) {
     const SpringRun s = runOscillator(*find(name), 1e6, 0.0, 0.01, 600);
-    t.rows.push_back({name, yesNo(s.finite && s.blowup_step < 0), s.blowup_step < 0 ? "never" : std::to_string(s.blowup_step),
-                      fmt(s.max_ratio), yesNo(s.monotone), fmt(s.max_abs_x)});
+    t.rows.push_back({name, yesNo(s.finite && s.blowup_step < 0), step(s.blowup_step), step(s.watch_step), fmt(s.max_ratio),
+                      yesNo(s.monotone), fmt(s.max_abs_x)});
     r.figures.push_back({"blowup_step_" + name, s.blowup_step < 0 ? kNaN : static_cast<double>(s.blowup_step), "step",
                          s.blowup_step < 0 ? "never" : ""});
+    r.figures.push_back({"blowup_reported_step_" + name, s.watch_step < 0 ? kNaN : static_cast<double>(s.watch_step), "step",
+                         s.watch_step < 0 ? "never" : ""});
     if (name == "implicit_euler") {
       found = true;
-      pass = s.finite && s.blowup_step < 0 && s.monotone && s.max_abs_x <= 0.01 * (1 + 1e-12);
+      const bool held = s.finite && s.blowup_step < 0 && s.monotone && s.max_abs_x <= 0.01 * (1 + 1e-12) && s.watch_step < 0;
+      pass &= held;
       r.figures.push_back({"implicit_euler_max_energy_ratio", s.max_ratio, "", ""});
-      if (!pass) r.notes.push_back("implicit_euler: finite " + yesNo(s.finite) + ", energy never increases " + yesNo(s.monotone) + ", max |x| " + fmt(s.max_abs_x));
+      if (!held)
+        r.notes.push_back("implicit_euler: finite " + yesNo(s.finite) + ", energy never increases " + yesNo(s.monotone) +
+                          ", max |x| " + fmt(s.max_abs_x) + ", blow-up reported at step " + step(s.watch_step));
+    } else if (!(s.watch_step >= 1 && s.watch_step <= 8)) {
+      pass = false;
+      r.notes.push_back(name + ": blow-up reported at step " + step(s.watch_step) + ", expected within 8 steps");
     }
   }
   if (!found) r.notes.push_back("the engine has no implicit_euler integrator (integrators: " + integratorNames() + ")");
   r.tables.push_back(t);
-  r.pass = pass;
+  r.pass = pass && found;
   return r;
 }
 

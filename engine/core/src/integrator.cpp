@@ -47,6 +47,7 @@ bool selected(const ForceEntry& f, const char* only) {
 // on w.states, into `out`.
 void evaluateForces(WorldImpl& w, double t0, double t, bool state_dependent, std::vector<Wrench>& out, const char* only) {
   const auto start = Clock::now();
+  const bool watch = !w.energy.push.empty();
   for (ForceEntry& f : w.forces) {
     if (!isActive(f, t0) || f.force->dependsOnState() != state_dependent || !selected(f, only)) continue;
     const BodyState& a = w.states[f.a.index];
@@ -62,6 +63,10 @@ void evaluateForces(WorldImpl& w, double t0, double t, bool state_dependent, std
     if (b && !finite(result.b) && w.force_fault[f.b.index] < 0) w.force_fault[f.b.index] = index;
     out[f.a.index] += result.a;
     if (b) out[f.b.index] += result.b;
+    if (watch && f.force->putsEnergyIn()) {  // its work bounds the energy it may put in (energy_watch.h)
+      w.energy.noteForce(f.a.index, result.a);
+      if (b) w.energy.noteForce(f.b.index, result.b);
+    }
   }
   w.stats.forces_ms += std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }

@@ -68,7 +68,7 @@ void guardNonFinite(WorldImpl& w, const char* stage) {
 }
 
 std::string Incident::message() const {
-  return "body " + std::to_string(uid) + (name.empty() ? "" : " '" + name + "'") + " frozen at step " +
+  return "body " + std::to_string(uid) + (name.empty() ? "" : " '" + name + "'") + (frozen ? " frozen" : " blew up") + " at step " +
          std::to_string(step) + " (t = " + formatNumber(time) + " s): " + cause;
 }
 

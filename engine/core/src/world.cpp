@@ -72,6 +72,7 @@ void World::step(double dt) {
   w.locked = true;
   const size_t incidents_before = w.incidents.size();
   const auto t0 = Clock::now();
+  beginEnergyWatch(w);  // the energy at the start: a blow-up is energy from nowhere (energy_watch.h)
   try {
     integrate(w, dt);  // docs/design/thesis.md §5: all non-contact forces, RK4 stages included; located impacts
   } catch (...) {
@@ -112,6 +113,7 @@ void World::step(double dt) {
   ++w.layout_version;
   updateSleep(w);  // islands whose bodies stayed still long enough stop being simulated
   ++w.step_count;
+  endEnergyWatch(w);  // more energy gained than the sources can give: a blow-up incident
   expireForces(w);  // docs/design/thesis.md §6: forces whose time ran out are removed
   w.locked = false;
   const auto t6 = Clock::now();
@@ -371,35 +373,40 @@ long World::stepCount() const { return impl_->step_count; }
 const StepStats& World::stats() const { return impl_->stats; }
 const std::vector<Incident>& World::incidents() const { return impl_->incidents; }
 
-double World::kineticEnergy() const {
+double World::kineticEnergy() const { return impl_->kineticEnergy(); }
+
+double WorldImpl::kineticEnergy() const {
   double e = 0.0;
-  for (size_t i = 0; i < impl_->bodies.size(); ++i) {
-    const Body& b = impl_->bodies[i];
-    if (!impl_->alive[i] || !b.isDynamic()) continue;
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    const Body& b = bodies[i];
+    if (!alive[i] || !b.isDynamic()) continue;
     e += 0.5 * b.mass * b.velocity.squaredNorm() + 0.5 * b.inertia * b.angular_velocity * b.angular_velocity;
   }
   return e;
 }
 
-double World::gravityPotentialEnergy() const {
+double World::gravityPotentialEnergy() const { return impl_->gravityPotentialEnergy(); }
+
+double WorldImpl::gravityPotentialEnergy() const {
   double e = 0.0;
-  for (size_t i = 0; i < impl_->bodies.size(); ++i) {
-    const Body& b = impl_->bodies[i];
-    if (impl_->alive[i] && b.isDynamic()) e -= b.mass * b.gravity_scale * b.gravityOr(impl_->def.gravity).dot(b.center);
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    const Body& b = bodies[i];
+    if (alive[i] && b.isDynamic()) e -= b.mass * b.gravity_scale * b.gravityOr(def.gravity).dot(b.center);
   }
   return e;
 }
 
-double World::potentialEnergy() const {
-  const WorldImpl& w = *impl_;
+double World::potentialEnergy() const { return impl_->potentialEnergy(); }
+
+double WorldImpl::potentialEnergy() const {
   double e = gravityPotentialEnergy();
-  for (const ForceEntry& f : w.forces) {
+  for (const ForceEntry& f : forces) {
     if (!f.alive) continue;
-    const BodyState a = WorldImpl::stateOf(w.bodies[f.a.index]);
+    const BodyState a = stateOf(bodies[f.a.index]);
     if (f.b.isNull()) {
       e += f.force->potentialEnergy(a, nullptr);
     } else {
-      const BodyState b = WorldImpl::stateOf(w.bodies[f.b.index]);
+      const BodyState b = stateOf(bodies[f.b.index]);
       e += f.force->potentialEnergy(a, &b);
     }
   }

@@ -7,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "energy_watch.h"
 #include "aabb_tree.h"
 #include "broad_phase.h"
 #include "contact.h"
@@ -156,7 +157,11 @@ struct WorldImpl {
   uint32_t next_uid = 1;
   bool locked = false;  // true while step() runs
   StepStats stats;
-  std::vector<Incident> incidents;  // NaN firewall reports (nan_guard.cpp)
+  std::vector<Incident> incidents;  // NaN firewall reports (nan_guard.cpp), blow-ups (energy_watch.cpp)
+  EnergyWatch energy;               // the energy balance of each step (energy_watch.h)
+  double kineticEnergy() const;     // World::kineticEnergy, potentialEnergy (world.cpp)
+  double potentialEnergy() const;
+  double gravityPotentialEnergy() const;
 
   // Scratch reused by every step, so a step in steady state allocates nothing.
   std::vector<BodyState> states;      // per slot: state seen by forces

@@ -265,7 +265,7 @@ void statisticsWindow(Session& s, PanelState& p) {
     ImGui::Text("contacts %d   points %d", st.contacts, st.contact_points);
     if (const auto& incidents = s.world().incidents(); !incidents.empty()) {
       ImGui::PushTextWrapPos(0.0f);
-      ImGui::TextColored(kErrorColor, "%zu body(ies) frozen by the NaN firewall; last: %s", incidents.size(),
+      ImGui::TextColored(kErrorColor, "%zu incident(s) (NaN firewall, blow-up); last: %s", incidents.size(),
                          incidents.back().message().c_str());
       ImGui::PopTextWrapPos();
     }

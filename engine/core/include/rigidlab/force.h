@@ -109,6 +109,10 @@ class Force {
   // bodies' states (springs, dampers) is constant while they rest. Forces that may change with time
   // (scripts, pushes, the mouse) keep their bodies awake. The default: keep awake.
   virtual bool allowsSleep() const { return false; }
+  // False if the force never does positive work that its potentialEnergy does not account for
+  // (springs store it, dampers only take): the blow-up watch (docs/stability.md) then does not count
+  // its work as energy put in. The default: it may put energy in (scripts, pushes, the mouse).
+  virtual bool putsEnergyIn() const { return true; }
   // Potential energy stored in the force (springs), for World::potentialEnergy. [J]
   virtual double potentialEnergy(const BodyState& /*a*/, const BodyState* /*b*/) const { return 0.0; }
   virtual void draw(DebugDraw& /*dd*/, const BodyState& /*a*/, const BodyState* /*b*/) const {}

@@ -32,6 +32,7 @@ class SpringForce final : public Force {
   DampingRate dampingRate() const override;  // c, and c·r² with r each attachment point's lever
   bool allowsSleep() const override { return true; }
   double potentialEnergy(const BodyState& a, const BodyState* b) const override;  // ½ k (L − L0)²
+  bool putsEnergyIn() const override { return false; }  // stores it (potentialEnergy) or its damping takes it
   void draw(DebugDraw& dd, const BodyState& a, const BodyState* b) const override;
   std::string_view kind() const override { return "spring"; }
   std::unique_ptr<Force> clone() const override { return std::make_unique<SpringForce>(*this); }
@@ -57,6 +58,7 @@ class DamperForce final : public Force {
   void evaluate(const ForceInput& in, ForceOutput& out) override;
   bool linearize(const ForceInput& in, ForceJacobian& out) const override;
   DampingRate dampingRate() const override { return {def_.coefficient, def_.angular_coefficient, 0.0}; }
+  bool putsEnergyIn() const override { return false; }  // only takes: F = −c v
   bool allowsSleep() const override { return true; }
   void draw(DebugDraw& dd, const BodyState& a, const BodyState* b) const override;
   std::string_view kind() const override { return "damper"; }

@@ -202,14 +202,16 @@ struct ContactInfo {
   double rolling_resistance = 0.0;  // [m]: the coefficient times the larger radius (ShapeDef)
 };
 
-// A body frozen by the NaN firewall: which body, when, and why.
+// What went wrong in a step: a body frozen by the NaN firewall, or a blow-up (energy grown beyond what
+// the scene's sources can put in, docs/stability.md); which body, when, and why.
 struct Incident {
   uint32_t uid = 0;       // Body::uid
   std::string name;       // the body's name
   long step = 0;          // World::stepCount() of the step in which it happened (1-based)
   double time = 0.0;      // simulation time at the start of that step [s]
   std::string cause;      // e.g. "spring returned a non-finite force" or "state became non-finite in ..."
-  std::string message() const;  // "body 3 'ball' frozen at step 120 (t = 2 s): <cause>"
+  bool frozen = true;     // false: a blow-up, the body left as it is
+  std::string message() const;  // "body 3 'ball' frozen at step 120 (t = 2 s): <cause>", or "blew up at"
 };
 
 // Wall-clock cost and counts of the last step, per stage.
