@@ -14,11 +14,6 @@ namespace rigidlab {
 
 struct WorldImpl;
 
-// Islands of at most this many contact points, whose movable bodies' masses differ by more than
-// kExactMassRatio, are solved exactly (docs/physics.md, "Extreme mass ratios").
-constexpr int kExactPoints = 16;
-constexpr double kExactMassRatio = 300.0;
-
 // Working storage only: a copy of the world starts with an empty one and assigning keeps the
 // target's own (as DirectJointScratch: nothing in it outlives a step but `exact` and the islands,
 // which the next step makes anew before reading them).
@@ -46,8 +41,8 @@ struct ContactExactScratch {
 // Forgets the last step's exact islands; solved: the number of contacts sequential impulses take.
 void beginExactContacts(WorldImpl& w, size_t solved);
 // Whether an island of sequential impulses' constraints (indices into `constraints`, all contacts,
-// no joint) is one the exact solve takes: few points, no surface effects, a mass ratio beyond
-// kExactMassRatio.
+// no joint) is one the exact solve takes: at most 64 points, no surface effects, a mass ratio
+// beyond 100:1 (contact_exact.cpp: kExactPoints, kExactMassRatio; docs/physics.md).
 bool takesExactPath(const WorldImpl& w, const std::vector<SolverBody>& bodies, const std::vector<SolverContact>& constraints,
                     std::span<const uint32_t> island);
 // Solves the island's contact impulses exactly on the solver's velocities (normal impulses ≥ 0
