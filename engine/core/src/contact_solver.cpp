@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "contact_exact.h"
 #include "joint_solver.h"
 #include "mechanism_step.h"
 #include "stages.h"
@@ -352,7 +353,10 @@ void convergeSmallIslands(WorldImpl& w, std::vector<SolverBody>& bodies, std::ve
       jointed |= order[end] >= nc;
       ++end;
     }
-    if (points <= static_cast<uint32_t>(kSmallIsland)) {
+    if (!jointed && takesExactPath(w, bodies, constraints, std::span<const uint32_t>(order.data() + start, end - start))) {
+      // Masses too far apart for the passes (contact_exact.cpp): the island's problem solved at once.
+      solveExactContactIsland(w, bodies, constraints, std::span<const uint32_t>(order.data() + start, end - start));
+    } else if (points <= static_cast<uint32_t>(kSmallIsland)) {
       const int passes = (jointed ? kMoreJointIterations : kMoreIterations) * w.def.iterations;
       const bool plain = w.solver_surfaces.empty();  // no contact with surface effects
       // Per joint of the island, the size of its impulses after its last solve (only its own solve
@@ -544,6 +548,7 @@ void solveContacts(WorldImpl& w) {
     w.solve_start_angular_velocity[i] = w.bodies[i].angular_velocity;
   }
   chooseSolvers(w);
+  beginExactContacts(w, w.solved.size());
   softStep(w);
   if (w.solved.empty() && w.si_joints.empty()) return;
   auto& prepared = w.solver_prepared;

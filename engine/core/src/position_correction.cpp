@@ -40,6 +40,7 @@
 #include <cmath>
 #include <utility>
 
+#include "contact_exact.h"
 #include "joint_solver.h"
 #include "stages.h"
 #include "world_impl.h"
@@ -91,6 +92,7 @@ void nonlinearGaussSeidel(WorldImpl& w) {
     double deepest = 0.0;
     for (size_t j = 0; j < w.solved.size(); ++j) {
       const Contact& c = w.contacts[w.solved[j]];
+      if (w.exact_contacts.exact[j]) continue;  // solved with its island (exactContactPositions)
       const SolverPrepared& local = w.solver_prepared[j];  // the points fixed to their bodies (contact_solver.cpp)
       Body& a = w.bodies[c.a];
       Body& b = w.bodies[c.b];
@@ -207,6 +209,7 @@ void correctPositions(WorldImpl& w) {
         if (w.alive[i] && (w.bodies[i].center != w.correction_start[i] || w.bodies[i].angle != w.correction_start_angle[i]))
           WorldImpl::syncTransform(w.bodies[i]);
       nonlinearGaussSeidel(w);
+      exactContactPositions(w);
       break;
   }
   for (size_t i = 0; i < n; ++i) {

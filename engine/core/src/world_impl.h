@@ -13,6 +13,7 @@
 #include "contact.h"
 #include "impact.h"
 #include "joint.h"
+#include "contact_exact.h"
 #include "joint_direct.h"
 #include "task_pool.h"
 #include "manifold.h"
@@ -394,6 +395,7 @@ struct WorldImpl {
   std::vector<uint32_t> joint_island_joints, joint_island_start;
   std::vector<uint32_t> joint_island_of, joint_island_index, joint_island_fill;  // its scratch
   DirectJointScratch direct_joints;     // the islands' rows and matrices (joint_direct.h)
+  ContactExactScratch exact_contacts;   // the exact contact islands' rows and matrices (contact_exact.h)
   std::vector<double> island_sleep;     // per island root: the shortest sleep time of its members
   std::vector<char> keep_awake;         // per slot: a force that forbids sleep acts on it
   void wakeIsland(uint32_t slot);
