@@ -60,6 +60,11 @@ void Solver::evaluateRows(const Island& island) {
 void Solver::structure(const Island& island) {
   const size_t m = rows_.size();
   built_ = true;
+  analysed_ = false;
+  shift_ = 0.0;
+  used_.clear();
+  tree_ = tree_factor_.build(island, rows_);
+  if (tree_) return;
   // Per moving body, the rows that act on it (and where it is in each row's Jacobian).
   std::vector<std::vector<std::pair<uint32_t, uint32_t>>> by_body(island.moving);
   for (uint32_t r = 0; r < m; ++r)
@@ -81,9 +86,6 @@ void Solver::structure(const Island& island) {
       }
   }
   dense_ = m <= static_cast<size_t>(kDenseRows);
-  analysed_ = false;
-  shift_ = 0.0;
-  used_.clear();
   if (dense_) {
     dense_a_.setZero(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(m));
     return;
@@ -107,6 +109,10 @@ void Solver::structure(const Island& island) {
 void Solver::factor(const Island& island) {
   const Eigen::Index m = static_cast<Eigen::Index>(rows_.size());
   used_ = use_;
+  if (tree_) {
+    tree_factor_.factor(island, rows_, use_);
+    return;
+  }
   double largest = 0.0;
   if (dense_) {
     compact_.resize(static_cast<size_t>(m));
@@ -164,7 +170,9 @@ void Solver::factor(const Island& island) {
 }
 
 void Solver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
-  if (dense_) {
+  if (tree_) {
+    tree_factor_.solve(rows_, b, x);
+  } else if (dense_) {
     const Eigen::Index n = dense_a_.rows();
     compact_b_.resize(n);
     for (size_t r = 0; r < compact_.size(); ++r)
@@ -259,24 +267,26 @@ void Solver::forces(const Island& island, const Eigen::Vector3d* accel, Eigen::V
         if (isMoving(island, row.body[i])) f[row.body[i]] += motor_force_[q] * row.j[i];
     }
   };
+  body_accel_.resize(n);
   for (size_t round = 0; round <= rows; ++round) {
+    // Each moving body's acceleration: the other forces', the springs' and the pushing motors'.
+    for (uint32_t b = 0; b < n; ++b) body_accel_[b] = force[b];
+    for (size_t q = 0; q < island.motors.size(); ++q) {
+      if (motor_force_[q] == 0.0) continue;
+      const Evaluated& mrow = rows_[m + q];
+      for (int k2 = 0; k2 < mrow.count; ++k2)
+        if (isMoving(island, mrow.body[k2])) body_accel_[mrow.body[k2]] += motor_force_[q] * mrow.j[k2];
+    }
+    for (uint32_t b = 0; b < n; ++b) {
+      const Eigen::Vector3d& f = body_accel_[b];
+      body_accel_[b] = Eigen::Vector3d(accel[b].x() + island.im[b] * f.x(), accel[b].y() + island.im[b] * f.y(),
+                                       accel[b].z() + island.ii[b] * f.z());
+    }
     for (size_t r = 0; r < rows; ++r) {
       const Evaluated& row = rows_[r];
       double ja = row.jdotv;
-      for (int i = 0; i < row.count; ++i) {
-        const uint32_t b = row.body[i];
-        if (!isMoving(island, b)) continue;
-        Eigen::Vector3d f = force[b];
-        for (size_t q = 0; q < island.motors.size(); ++q) {
-          if (motor_force_[q] == 0.0) continue;
-          const Evaluated& mrow = rows_[m + q];
-          for (int k2 = 0; k2 < mrow.count; ++k2)
-            if (mrow.body[k2] == b) f += motor_force_[q] * mrow.j[k2];
-        }
-        const Eigen::Vector3d a(accel[b].x() + island.im[b] * f.x(), accel[b].y() + island.im[b] * f.y(),
-                                accel[b].z() + island.ii[b] * f.z());
-        ja += row.j[i].dot(a);
-      }
+      for (int i = 0; i < row.count; ++i)
+        if (isMoving(island, row.body[i])) ja += row.j[i].dot(body_accel_[row.body[i]]);
       rhs_[static_cast<Eigen::Index>(r)] = use_[r] ? -ja : 0.0;
     }
     factor(island);
