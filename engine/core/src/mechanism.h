@@ -154,7 +154,7 @@ class TreeFactor {
   struct Group {
     uint32_t up = 0, down = 0;  // its bodies (up == down: one); its elimination updates W̃_up
     uint32_t first = 0, count = 0;  // its rows: members_[first .. first + count)
-    uint32_t at = 0;  // its factors in arena_: L (count²), d, u = W̃_up J_upᵀ (3 count), z, P = D⁻¹ uᵀ (3 count)
+    uint32_t at = 0;  // its factors in arena_: L (count²), D⁻¹, u = W̃_up J_upᵀ (3 count), z, P = D⁻¹ uᵀ (3 count)
     uint32_t n = 0;   // rows in use at the last factor (in_use_[first .. first + n))
   };
   std::vector<Group> groups_;  // in elimination order
@@ -163,6 +163,12 @@ class TreeFactor {
   std::vector<Eigen::Matrix3d> w_;      // per moving body: W̃
   std::vector<Eigen::Vector3d> s_;      // per moving body: the forward and backward sums
   std::vector<double> arena_;
+};
+
+// How far an island's states are off its equalities: the largest |g| (a limit: only past its bound)
+// and the largest |J v| of its two-sided ones.
+struct Residuals {
+  double position = 0.0, velocity = 0.0;
 };
 
 // The island's solver: the factorisation of J M⁻¹ Jᵀ (a forest's in tree order, TreeFactor; with
@@ -201,8 +207,7 @@ class Solver {
   double impulse(size_t k) const { return impulse_[static_cast<Eigen::Index>(k)]; }
   double springForce(size_t k) const { return spring_force_[k]; }
   // The largest |g| and |J v| of the equalities at the island's states.
-  double residual(const Island& island);
-  double velocityResidual(const Island& island);
+  Residuals residuals(const Island& island);
 
  private:
   // J at the states into rows_ (and x, ẋ, J̇v): the equalities, then the motors; builds the
@@ -213,7 +218,8 @@ class Solver {
   // so its λ is its right-hand side, kept 0), factored.
   void factor(const Island& island);
   // Two passes v ← v − M⁻¹ Jᵀ A⁻¹ J v with J where the bodies are and the last factorisation.
-  void velocityPasses(Island& island);
+  // `evaluated`: rows_ hold J, x and ẋ where the bodies are already.
+  void velocityPasses(Island& island, bool evaluated = false);
   // x = A⁻¹ b with the last factorisation.
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
   // Adds M⁻¹ Jᵀ λ scaled by `scale` to `out` (3 per moving body).
@@ -255,9 +261,21 @@ class Solver {
   std::vector<int8_t> motor_mode_;   // per motor, this step: 0 holds its speed, ±1 pushes that way
   std::vector<double> motor_force_;  // per motor: the force it pushes with when out of use (0: none)
   std::vector<State> start_;  // the states a Newton step starts from (its line search)
-  std::vector<Rot> rot_;      // R(θ) of each body at the island's states, as last placed
+  std::vector<Rot> rot_;         // R(θ) of each body at the island's states, as last placed
+  std::vector<double> rot_at_;   // the angle each of rot_ was taken at (a body whose angle did not
+                                 // change since keeps its sine and cosine: most places are at the
+                                 // same positions, the velocities' and the projection's)
   const Rot* place(const Island& island) {
-    rotationsOf(island.states, rot_);
+    const size_t n = island.states.size();
+    if (rot_at_.size() != n) {
+      rot_at_.assign(n, std::numeric_limits<double>::quiet_NaN());
+      rot_.resize(n);
+    }
+    for (size_t k = 0; k < n; ++k)
+      if (!(island.states[k].angle == rot_at_[k])) {
+        rot_at_[k] = island.states[k].angle;
+        rot_[k] = Rot::fromAngle(rot_at_[k]);
+      }
     return rot_.data();
   }
   std::vector<double> spring_force_;

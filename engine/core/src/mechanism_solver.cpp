@@ -324,22 +324,16 @@ void Solver::forces(const Island& island, const Eigen::Vector3d* accel, Eigen::V
   motorForces(force);
 }
 
-double Solver::residual(const Island& island) {
+Residuals Solver::residuals(const Island& island) {
   const Rot* rot = place(island);
-  double largest = 0.0;
+  Residuals out;
   for (const Equality& e : island.equalities) {
-    const double g = evaluate(e.coordinate, island.states.data(), rot).x - e.target;
-    largest = std::max(largest, e.sign == 0.0 ? std::abs(g) : std::max(0.0, -e.sign * g));
+    const Evaluated at = evaluate(e.coordinate, island.states.data(), rot);
+    const double g = at.x - e.target;
+    out.position = std::max(out.position, e.sign == 0.0 ? std::abs(g) : std::max(0.0, -e.sign * g));
+    if (e.sign == 0.0) out.velocity = std::max(out.velocity, std::abs(at.xdot));
   }
-  return largest;
-}
-
-double Solver::velocityResidual(const Island& island) {
-  const Rot* rot = place(island);
-  double largest = 0.0;
-  for (const Equality& e : island.equalities)
-    if (e.sign == 0.0) largest = std::max(largest, std::abs(evaluate(e.coordinate, island.states.data(), rot).xdot));
-  return largest;
+  return out;
 }
 
 void Solver::beginStep(Island& island, double h) {
@@ -366,7 +360,7 @@ void Solver::beginStep(Island& island, double h) {
     for (size_t q = 0; q < island.motors.size(); ++q) catches |= off_sign[q] != 0 && motor_mode_[q] == 0;
     if (!catches) break;
     for (size_t q = 0; q < island.motors.size(); ++q) motor_rate_[q] = rows_[m + q].xdot - island.motors[q].speed;
-    velocityPasses(island);
+    velocityPasses(island, true);  // the rows were evaluated where the bodies are
     bool over = false;
     for (size_t q = 0; q < island.motors.size(); ++q) {
       if (off_sign[q] == 0 || motor_mode_[q] != 0) continue;
@@ -477,13 +471,13 @@ void Solver::projectVelocities(Island& island) {
   velocityPasses(island);
 }
 
-void Solver::velocityPasses(Island& island) {
+void Solver::velocityPasses(Island& island, bool evaluated) {
   const size_t m = island.equalities.size(), rows = m + island.motors.size();
   impulse_.setZero(static_cast<Eigen::Index>(rows));
   rhs_.resize(static_cast<Eigen::Index>(rows));
   // Which rows: the equalities; a limit at its bound that the velocities run into (an inelastic
   // stop); a motor at its speed, or whose rate crossed it since markStart (caught at its speed).
-  evaluateRows(island);
+  if (!evaluated) evaluateRows(island);
   motor_rate_.resize(island.motors.size(), 0.0);
   for (size_t r = 0; r < m; ++r) {
     const Equality& e = island.equalities[r];
@@ -532,10 +526,15 @@ void Solver::velocityPasses(Island& island) {
       island.states[k].v += Vec2(dq_[3 * k], dq_[3 * k + 1]);
       island.states[k].w += dq_[3 * k + 2];
     }
-    const Rot* rot = place(island);
+    // ẋ = J v with J where the bodies are (the positions did not move): each row's rate anew.
     for (size_t r = 0; r < rows; ++r) {
-      const Coordinate& c = r < m ? island.equalities[r].coordinate : island.motors[r - m].coordinate;
-      rows_[r].xdot = evaluate(c, island.states.data(), rot).xdot;
+      Evaluated& row = rows_[r];
+      double xdot = 0.0;
+      for (int i = 0; i < row.count; ++i) {
+        const State& st = island.states[row.body[i]];
+        xdot += row.j[i].x() * st.v.x() + row.j[i].y() * st.v.y() + row.j[i].z() * st.w;
+      }
+      row.xdot = xdot;
     }
   }
   for (size_t q = 0; q < island.motors.size(); ++q) motor_rate_[q] = rows_[m + q].xdot - island.motors[q].speed;

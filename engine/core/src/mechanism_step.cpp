@@ -601,7 +601,8 @@ void chooseMechanisms(WorldImpl& w) {
     // the projections leave.
     e.island.tolerance = 1e-9 * scale;
     e.island.speed_tolerance = 1e-9 * speed;
-    if (e.solver.residual(e.island) > 0x1p-40 * scale || e.solver.velocityResidual(e.island) > 0x1p-40 * speed) {
+    const mechanism::Residuals off = e.solver.residuals(e.island);
+    if (off.position > 0x1p-40 * scale || off.velocity > 0x1p-40 * speed) {
       project(w, m, e, m.step_start);
       for (uint32_t k = 0; k < e.island.moving; ++k) WorldImpl::syncTransform(w.bodies[e.slots[k]]);
     }

@@ -32,29 +32,57 @@ uint32_t findRoot(std::vector<uint32_t>& parent, uint32_t i) {
 }
 
 // LDLᵀ of the n × n matrix in `l` (row-major, lower triangle read), in place: L below the diagonal
-// (unit diagonal), D into d. False when a pivot is not above `floor`.
-bool ldlt(double* l, double* d, uint32_t n, double floor) {
+// (unit diagonal), D⁻¹ into d (the solves multiply: a division costs several multiplications).
+// False when a pivot is not above `floor`. N: n when known at compile time (the loops then unroll:
+// a pin's group has 2 rows), 0 for any.
+template <uint32_t N>
+bool ldltOf(double* l, double* d, uint32_t size, double floor) {
+  const uint32_t n = N ? N : size;
   for (uint32_t j = 0; j < n; ++j) {
     double dj = l[j * n + j];
     for (uint32_t k = 0; k < j; ++k) dj -= l[j * n + k] * l[j * n + k] * d[k];
     if (!(dj > floor)) return false;
     d[j] = dj;
+    const double inverse = 1.0 / dj;
     for (uint32_t i = j + 1; i < n; ++i) {
       double v = l[i * n + j];
       for (uint32_t k = 0; k < j; ++k) v -= l[i * n + k] * l[j * n + k] * d[k];
-      l[i * n + j] = v / dj;
+      l[i * n + j] = v * inverse;
     }
   }
+  for (uint32_t j = 0; j < n; ++j) d[j] = 1.0 / d[j];
   return true;
 }
 
-// y ← (L D Lᵀ)⁻¹ y.
-void ldltSolve(const double* l, const double* d, uint32_t n, double* y) {
+// y ← (L D Lᵀ)⁻¹ y (d: D⁻¹).
+template <uint32_t N>
+void ldltSolveOf(const double* l, const double* d, uint32_t size, double* y) {
+  const uint32_t n = N ? N : size;
   for (uint32_t i = 0; i < n; ++i)
     for (uint32_t k = 0; k < i; ++k) y[i] -= l[i * n + k] * y[k];
-  for (uint32_t i = 0; i < n; ++i) y[i] /= d[i];
+  for (uint32_t i = 0; i < n; ++i) y[i] *= d[i];
   for (uint32_t i = n; i-- > 0;)
     for (uint32_t k = i + 1; k < n; ++k) y[i] -= l[k * n + i] * y[k];
+}
+
+bool ldlt(double* l, double* d, uint32_t n, double floor) {
+  switch (n) {
+    case 1: return ldltOf<1>(l, d, n, floor);
+    case 2: return ldltOf<2>(l, d, n, floor);
+    case 3: return ldltOf<3>(l, d, n, floor);
+    case 4: return ldltOf<4>(l, d, n, floor);
+    default: return ldltOf<0>(l, d, n, floor);
+  }
+}
+
+void ldltSolve(const double* l, const double* d, uint32_t n, double* y) {
+  switch (n) {
+    case 1: ldltSolveOf<1>(l, d, n, y); break;
+    case 2: ldltSolveOf<2>(l, d, n, y); break;
+    case 3: ldltSolveOf<3>(l, d, n, y); break;
+    case 4: ldltSolveOf<4>(l, d, n, y); break;
+    default: ldltSolveOf<0>(l, d, n, y); break;
+  }
 }
 
 }  // namespace
