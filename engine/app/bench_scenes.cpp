@@ -163,6 +163,48 @@ BenchWorld builtinSprings() {
   return b;
 }
 
+// A chain of n links (0.1 × 0.01 m boxes of 1 kg) pinned end to end, the first to the world,
+// released horizontally, no contacts (the links do not collide): one island of the exact joints
+// (docs/performance.md "Exact joints"), whose cost per step should grow linearly in n. The probe
+// reports the largest pin gap over the run.
+BenchWorld linkChain(int n) {
+  BenchWorld b;
+  WorldDef def;
+  def.integrator = Integrator::RungeKutta4;
+  b.world = std::make_unique<World>(def);
+  World& w = *b.world;
+  BodyId previous{};
+  for (int i = 0; i < n; ++i) {
+    BodyDef d;
+    d.shape = makeBox(0.1, 0.01);
+    d.position = Vec2((i + 0.5) * 0.1, 0.0);
+    d.mass = 1.0;
+    d.filter.group = -1;  // links never collide: the island stays exact
+    const BodyId link = w.createBody(d);
+    JointDef j;
+    j.type = JointType::Revolute;
+    j.a = link;
+    j.b = previous;
+    j.anchor_a = Vec2(i * 0.1, 0.0);
+    w.createJoint(j);
+    previous = link;
+  }
+  return b;
+}
+
+void probeChainGap(BenchWorld& bw, int /*step*/, BenchSamples& out) {
+  double& gap = out.figures["max_pin_gap_m"];
+  World& w = bw.get();
+  // Over the run: the projections' Newton iterations and the intervals integrated again (what a
+  // step's cost is made of besides the factorisations).
+  out.figures["newton_iterations"] += w.stats().mechanism_newton;
+  out.figures["retries"] += w.stats().mechanism_retries;
+  for (JointId id : w.jointIds()) {
+    const JointState s = w.jointState(id);
+    gap = std::max(gap, (s.world_anchor_a - s.world_anchor_b).norm());
+  }
+}
+
 // The same scene with the springs written in Lua (scripts/forces/spring.lua).
 BenchWorld luaSprings() {
   const std::string source = R"lua(
@@ -366,6 +408,13 @@ const std::vector<BenchScene>& benchScenes() {
       {"lua_springs", "lua_springs", 1000, "1000 bodies on Lua springs (forces.spring), RK4, no contacts", 600, 1.0 / 60.0,
        luaSprings},
     };
+    for (int links : {1000, 10000}) {
+      BenchScene chain{"chain" + std::to_string(links), "chain", links,
+                       "chain of " + std::to_string(links) + " links (0.1 m, 1 kg) released horizontally, RK4, exact joints, 60 steps",
+                       60, 1.0 / 60.0, [links] { return linkChain(links); }};
+      chain.probe = probeChainGap;
+      v.push_back(chain);
+    }
     addSuiteScenes(v);
     addQueryScenes(v);
     addEventScenes(v);

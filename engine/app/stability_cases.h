@@ -64,5 +64,6 @@ CaseResult scale(bool quick);
 CaseResult jointChain(bool quick);
 CaseResult jointHeavyLoad(bool quick);
 CaseResult jointWhirl(bool quick);
+CaseResult jointLongChains(bool quick);
 
 }  // namespace rigidlab::app::stability

@@ -464,6 +464,7 @@ const std::vector<Case>& cases() {
       {"joint_chain", "30 links of 0.5 m, 1 kg released horizontally: stretch, pin gaps", jointChain},
       {"joint_heavy_load", "100 kg box on 10 links of 1 kg (100:1): stretch", jointHeavyLoad},
       {"joint_whirl", "20-link chain whirled at 6 rad/s: stretch, pin gaps, energy", jointWhirl},
+      {"joint_long_chains", "chains of 100, 1000, 10 000 links released horizontally: pin gaps", jointLongChains},
   };
   return list;
 }

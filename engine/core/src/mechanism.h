@@ -130,10 +130,51 @@ struct Projection {
   int iterations = 0;
 };
 
-// The island's solver: the factorisation of J M⁻¹ Jᵀ (dense below kDenseRows rows, else sparse
-// LDLᵀ with an approximate minimum degree ordering, whose analysis is kept while the island's
-// structure stays the same) and its scratch. One per island; reusing it allocates nothing while
-// the island keeps its shape.
+// J M⁻¹ Jᵀ of an island whose rows act on at most two moving bodies each and join them in a forest
+// (chains, trees, ragdolls: no closed loop), factored in O(n) by eliminating the rows in tree order,
+// leaves to root (Baraff, "Linear-Time Dynamics using Lagrange Multipliers", SIGGRAPH 1996). The
+// rows on the same bodies form a group; two groups are coupled only through a body they share, so
+// eliminating a group that is the last one at its lower body changes only its upper body's
+// effective inverse mass,
+//   W̃_up ← W̃_up − W̃_up J_upᵀ D⁻¹ J_up W̃_up,    D = Σ_{b in the group} J_b W̃_b J_bᵀ
+// (W̃_b starts as diag(1/m, 1/m, 1/I)): no fill, 3 × 3 body blocks and each group's own small D.
+// A group whose D is singular (rows that depend on each other: a redundant joint) is factored as
+// D + εI, ε = 1e-12 of its largest diagonal entry, as the whole-matrix path does.
+class TreeFactor {
+ public:
+  // The elimination order for `rows` (evaluated at `island`); false when the island is not such a
+  // forest (then A is factored as a whole).
+  bool build(const Island& island, const std::vector<Evaluated>& rows);
+  // Factors A over the rows in use (`use`).
+  void factor(const Island& island, const std::vector<Evaluated>& rows, const std::vector<char>& use);
+  // x = A⁻¹ b over the rows in use of the last factor; a row out of use keeps x = b.
+  void solve(const std::vector<Evaluated>& rows, const Eigen::VectorXd& b, Eigen::VectorXd& x);
+
+ private:
+  struct Group {
+    uint32_t up = 0, down = 0;  // its bodies (up == down: one); its elimination updates W̃_up
+    uint32_t first = 0, count = 0;  // its rows: members_[first .. first + count)
+    uint32_t at = 0;  // its factors in arena_: L (count²), D⁻¹, u = W̃_up J_upᵀ (3 count), z, P = D⁻¹ uᵀ (3 count)
+    uint32_t n = 0;   // rows in use at the last factor (in_use_[first .. first + n))
+  };
+  std::vector<Group> groups_;  // in elimination order
+  std::vector<uint32_t> members_, in_use_;
+  std::vector<uint8_t> j_up_, j_down_;  // per member: where up and down are in the row's Jacobian
+  std::vector<Eigen::Matrix3d> w_;      // per moving body: W̃
+  std::vector<Eigen::Vector3d> s_;      // per moving body: the forward and backward sums
+  std::vector<double> arena_;
+};
+
+// How far an island's states are off its equalities: the largest |g| (a limit: only past its bound)
+// and the largest |J v| of its two-sided ones.
+struct Residuals {
+  double position = 0.0, velocity = 0.0;
+};
+
+// The island's solver: the factorisation of J M⁻¹ Jᵀ (a forest's in tree order, TreeFactor; with
+// closed loops dense below kDenseRows rows, else sparse LDLᵀ with an approximate minimum degree
+// ordering, whose analysis is kept while the island's structure stays the same) and its scratch.
+// One per island; reusing it allocates nothing while the island keeps its shape.
 class Solver {
  public:
   static constexpr int kDenseRows = 64;
@@ -166,8 +207,7 @@ class Solver {
   double impulse(size_t k) const { return impulse_[static_cast<Eigen::Index>(k)]; }
   double springForce(size_t k) const { return spring_force_[k]; }
   // The largest |g| and |J v| of the equalities at the island's states.
-  double residual(const Island& island);
-  double velocityResidual(const Island& island);
+  Residuals residuals(const Island& island);
 
  private:
   // J at the states into rows_ (and x, ẋ, J̇v): the equalities, then the motors; builds the
@@ -178,7 +218,8 @@ class Solver {
   // so its λ is its right-hand side, kept 0), factored.
   void factor(const Island& island);
   // Two passes v ← v − M⁻¹ Jᵀ A⁻¹ J v with J where the bodies are and the last factorisation.
-  void velocityPasses(Island& island);
+  // `evaluated`: rows_ hold J, x and ẋ where the bodies are already.
+  void velocityPasses(Island& island, bool evaluated = false);
   // x = A⁻¹ b with the last factorisation.
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
   // Adds M⁻¹ Jᵀ λ scaled by `scale` to `out` (3 per moving body).
@@ -196,6 +237,8 @@ class Solver {
   };
   std::vector<Entry> entries_;
   bool dense_ = true;
+  bool tree_ = false;  // the island is a forest: TreeFactor
+  TreeFactor tree_factor_;
   // The dense path factors the rows in use only (a released limit is out of the matrix, not a
   // row of identity in it): compact_[r] is row r's place among them, −1 out of use.
   Eigen::MatrixXd dense_a_;
@@ -218,12 +261,25 @@ class Solver {
   std::vector<int8_t> motor_mode_;   // per motor, this step: 0 holds its speed, ±1 pushes that way
   std::vector<double> motor_force_;  // per motor: the force it pushes with when out of use (0: none)
   std::vector<State> start_;  // the states a Newton step starts from (its line search)
-  std::vector<Rot> rot_;      // R(θ) of each body at the island's states, as last placed
+  std::vector<Rot> rot_;         // R(θ) of each body at the island's states, as last placed
+  std::vector<double> rot_at_;   // the angle each of rot_ was taken at (a body whose angle did not
+                                 // change since keeps its sine and cosine: most places are at the
+                                 // same positions, the velocities' and the projection's)
   const Rot* place(const Island& island) {
-    rotationsOf(island.states, rot_);
+    const size_t n = island.states.size();
+    if (rot_at_.size() != n) {
+      rot_at_.assign(n, std::numeric_limits<double>::quiet_NaN());
+      rot_.resize(n);
+    }
+    for (size_t k = 0; k < n; ++k)
+      if (!(island.states[k].angle == rot_at_[k])) {
+        rot_at_[k] = island.states[k].angle;
+        rot_[k] = Rot::fromAngle(rot_at_[k]);
+      }
     return rot_.data();
   }
   std::vector<double> spring_force_;
+  std::vector<Eigen::Vector3d> body_accel_;  // forces(): each moving body's acceleration in a round
 };
 
 }  // namespace rigidlab::mechanism

@@ -60,6 +60,11 @@ void Solver::evaluateRows(const Island& island) {
 void Solver::structure(const Island& island) {
   const size_t m = rows_.size();
   built_ = true;
+  analysed_ = false;
+  shift_ = 0.0;
+  used_.clear();
+  tree_ = tree_factor_.build(island, rows_);
+  if (tree_) return;
   // Per moving body, the rows that act on it (and where it is in each row's Jacobian).
   std::vector<std::vector<std::pair<uint32_t, uint32_t>>> by_body(island.moving);
   for (uint32_t r = 0; r < m; ++r)
@@ -81,9 +86,6 @@ void Solver::structure(const Island& island) {
       }
   }
   dense_ = m <= static_cast<size_t>(kDenseRows);
-  analysed_ = false;
-  shift_ = 0.0;
-  used_.clear();
   if (dense_) {
     dense_a_.setZero(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(m));
     return;
@@ -107,6 +109,10 @@ void Solver::structure(const Island& island) {
 void Solver::factor(const Island& island) {
   const Eigen::Index m = static_cast<Eigen::Index>(rows_.size());
   used_ = use_;
+  if (tree_) {
+    tree_factor_.factor(island, rows_, use_);
+    return;
+  }
   double largest = 0.0;
   if (dense_) {
     compact_.resize(static_cast<size_t>(m));
@@ -164,7 +170,9 @@ void Solver::factor(const Island& island) {
 }
 
 void Solver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
-  if (dense_) {
+  if (tree_) {
+    tree_factor_.solve(rows_, b, x);
+  } else if (dense_) {
     const Eigen::Index n = dense_a_.rows();
     compact_b_.resize(n);
     for (size_t r = 0; r < compact_.size(); ++r)
@@ -259,24 +267,26 @@ void Solver::forces(const Island& island, const Eigen::Vector3d* accel, Eigen::V
         if (isMoving(island, row.body[i])) f[row.body[i]] += motor_force_[q] * row.j[i];
     }
   };
+  body_accel_.resize(n);
   for (size_t round = 0; round <= rows; ++round) {
+    // Each moving body's acceleration: the other forces', the springs' and the pushing motors'.
+    for (uint32_t b = 0; b < n; ++b) body_accel_[b] = force[b];
+    for (size_t q = 0; q < island.motors.size(); ++q) {
+      if (motor_force_[q] == 0.0) continue;
+      const Evaluated& mrow = rows_[m + q];
+      for (int k2 = 0; k2 < mrow.count; ++k2)
+        if (isMoving(island, mrow.body[k2])) body_accel_[mrow.body[k2]] += motor_force_[q] * mrow.j[k2];
+    }
+    for (uint32_t b = 0; b < n; ++b) {
+      const Eigen::Vector3d& f = body_accel_[b];
+      body_accel_[b] = Eigen::Vector3d(accel[b].x() + island.im[b] * f.x(), accel[b].y() + island.im[b] * f.y(),
+                                       accel[b].z() + island.ii[b] * f.z());
+    }
     for (size_t r = 0; r < rows; ++r) {
       const Evaluated& row = rows_[r];
       double ja = row.jdotv;
-      for (int i = 0; i < row.count; ++i) {
-        const uint32_t b = row.body[i];
-        if (!isMoving(island, b)) continue;
-        Eigen::Vector3d f = force[b];
-        for (size_t q = 0; q < island.motors.size(); ++q) {
-          if (motor_force_[q] == 0.0) continue;
-          const Evaluated& mrow = rows_[m + q];
-          for (int k2 = 0; k2 < mrow.count; ++k2)
-            if (mrow.body[k2] == b) f += motor_force_[q] * mrow.j[k2];
-        }
-        const Eigen::Vector3d a(accel[b].x() + island.im[b] * f.x(), accel[b].y() + island.im[b] * f.y(),
-                                accel[b].z() + island.ii[b] * f.z());
-        ja += row.j[i].dot(a);
-      }
+      for (int i = 0; i < row.count; ++i)
+        if (isMoving(island, row.body[i])) ja += row.j[i].dot(body_accel_[row.body[i]]);
       rhs_[static_cast<Eigen::Index>(r)] = use_[r] ? -ja : 0.0;
     }
     factor(island);
@@ -314,22 +324,16 @@ void Solver::forces(const Island& island, const Eigen::Vector3d* accel, Eigen::V
   motorForces(force);
 }
 
-double Solver::residual(const Island& island) {
+Residuals Solver::residuals(const Island& island) {
   const Rot* rot = place(island);
-  double largest = 0.0;
+  Residuals out;
   for (const Equality& e : island.equalities) {
-    const double g = evaluate(e.coordinate, island.states.data(), rot).x - e.target;
-    largest = std::max(largest, e.sign == 0.0 ? std::abs(g) : std::max(0.0, -e.sign * g));
+    const Evaluated at = evaluate(e.coordinate, island.states.data(), rot);
+    const double g = at.x - e.target;
+    out.position = std::max(out.position, e.sign == 0.0 ? std::abs(g) : std::max(0.0, -e.sign * g));
+    if (e.sign == 0.0) out.velocity = std::max(out.velocity, std::abs(at.xdot));
   }
-  return largest;
-}
-
-double Solver::velocityResidual(const Island& island) {
-  const Rot* rot = place(island);
-  double largest = 0.0;
-  for (const Equality& e : island.equalities)
-    if (e.sign == 0.0) largest = std::max(largest, std::abs(evaluate(e.coordinate, island.states.data(), rot).xdot));
-  return largest;
+  return out;
 }
 
 void Solver::beginStep(Island& island, double h) {
@@ -356,7 +360,7 @@ void Solver::beginStep(Island& island, double h) {
     for (size_t q = 0; q < island.motors.size(); ++q) catches |= off_sign[q] != 0 && motor_mode_[q] == 0;
     if (!catches) break;
     for (size_t q = 0; q < island.motors.size(); ++q) motor_rate_[q] = rows_[m + q].xdot - island.motors[q].speed;
-    velocityPasses(island);
+    velocityPasses(island, true);  // the rows were evaluated where the bodies are
     bool over = false;
     for (size_t q = 0; q < island.motors.size(); ++q) {
       if (off_sign[q] == 0 || motor_mode_[q] != 0) continue;
@@ -467,13 +471,13 @@ void Solver::projectVelocities(Island& island) {
   velocityPasses(island);
 }
 
-void Solver::velocityPasses(Island& island) {
+void Solver::velocityPasses(Island& island, bool evaluated) {
   const size_t m = island.equalities.size(), rows = m + island.motors.size();
   impulse_.setZero(static_cast<Eigen::Index>(rows));
   rhs_.resize(static_cast<Eigen::Index>(rows));
   // Which rows: the equalities; a limit at its bound that the velocities run into (an inelastic
   // stop); a motor at its speed, or whose rate crossed it since markStart (caught at its speed).
-  evaluateRows(island);
+  if (!evaluated) evaluateRows(island);
   motor_rate_.resize(island.motors.size(), 0.0);
   for (size_t r = 0; r < m; ++r) {
     const Equality& e = island.equalities[r];
@@ -522,10 +526,15 @@ void Solver::velocityPasses(Island& island) {
       island.states[k].v += Vec2(dq_[3 * k], dq_[3 * k + 1]);
       island.states[k].w += dq_[3 * k + 2];
     }
-    const Rot* rot = place(island);
+    // ẋ = J v with J where the bodies are (the positions did not move): each row's rate anew.
     for (size_t r = 0; r < rows; ++r) {
-      const Coordinate& c = r < m ? island.equalities[r].coordinate : island.motors[r - m].coordinate;
-      rows_[r].xdot = evaluate(c, island.states.data(), rot).xdot;
+      Evaluated& row = rows_[r];
+      double xdot = 0.0;
+      for (int i = 0; i < row.count; ++i) {
+        const State& st = island.states[row.body[i]];
+        xdot += row.j[i].x() * st.v.x() + row.j[i].y() * st.v.y() + row.j[i].z() * st.w;
+      }
+      row.xdot = xdot;
     }
   }
   for (size_t q = 0; q < island.motors.size(); ++q) motor_rate_[q] = rows_[m + q].xdot - island.motors[q].speed;

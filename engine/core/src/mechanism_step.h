@@ -59,7 +59,12 @@ int mechanismSteps(const WorldImpl& w, double h);
 // An attempt fails too when a projection leaves a joint open by more than kProjected of the size
 // (Newton did not converge from the step's drift: a whipping end turned too far in it).
 constexpr double kMaxMechanismDrift = 1e-3;
+// Or, far from the origin, by more than kRoundOff times Newton's tolerance there (a few units in
+// the last place of the island's coordinates, where Newton stops at round-off): a 10 000-link chain
+// of 0.1 m links spans 1000 m, whose last place is 1.1e-13 m, above 1e-12 of its 0.05 m lever arms,
+// and every step of it failed (16 steps of RK4, then the stiff step again: 31 steps' work a step).
 constexpr double kProjected = 1e-12;
+constexpr double kRoundOff = 16.0;
 void beginMechanismAttempt(WorldImpl& w);
 bool mechanismAttemptFailed(const WorldImpl& w);  // a staged island drifted too far
 void restoreMechanismAttempt(WorldImpl& w);
