@@ -9,10 +9,10 @@
 -- σ = (v_x − v_px) + ω r: the impulse that stops it is P = −σ m_t, m_t = 1/(1/m + r²/I) = m/3 for a
 -- disc; it sticks if |P| ≤ μ P_n (P_n = m (1 + e) |u|), else slides with P_t = −sign(σ) μ P_n;
 -- then v_x += P_t/m, ω += r P_t / I (docs/design/thesis.md §8, impact_solve.cpp).
---   lane 1: e = 1, frictionless, v_p = (0, 2), dropped 1 m above the paddle: impacts at 0.2918 s
---           and 1.2836 s (relative speed 4.86 m/s)
---   lane 2: e = 0.5, frictionless, v_p = (0, 2), dropped 2.5 m above: impacts at 0.5386, 1.2811
---           and 1.6524 s (relative speeds 7.28, 3.64, 1.82 m/s; the next, 0.91 m/s, at 1.838 s)
+--   lane 1: e = 1, frictionless, v_p = (0, 2), dropped 1 m above the paddle: impacts at 0.2916 s
+--           and 1.2826 s (relative speed 4.86 m/s)
+--   lane 2: e = 0.5, frictionless, v_p = (0, 2), dropped 2.5 m above: impacts at 0.5387, 1.2813
+--           and 1.6526 s (relative speeds 7.28, 3.64, 1.82 m/s; the next, 0.91 m/s, at 1.838 s)
 --   lane 3: as lane 2 with μ = 0.02 and v_p = (1.5, 2): the paddle slides under the ball, every
 --           impact slides (the friction needed to stop the slip is more than μ P_n)
 -- All impact times are off every step grid of the sweep.

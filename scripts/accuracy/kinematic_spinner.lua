@@ -9,7 +9,7 @@
 --   v' = v − (1 + e) ((v − v_k) · n) n,
 -- its spin untouched; then it flies straight, away from the bar (checked: no second contact).
 --   lane 1: e = 1, ball r = 0.25 from (1.2, 2) at (0, −3) m/s onto a bar 4 m × 0.2 m: impact at
---           t = 0.2791 s, 1.63 m along the face, relative normal speed 5.8 m/s
+--           t = 0.2792 s, 1.63 m along the face, relative normal speed 5.8 m/s
 --   lane 2: the same with e = 0.5
 -- Straight flights and a bar that turns at a constant rate: every integrator is exact.
 scene = { sleeping = false, title = "Balls struck by spinning kinematic bars, e = 1 and 0.5", gravity = {0, 0},
