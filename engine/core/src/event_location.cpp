@@ -234,7 +234,7 @@ class Timeline {
   // any other where it is (the involved located bodies have been integrated to t).
   void placeAt(uint32_t body, double t, Transform& xf, Vec2& center) const {
     const Body& b = w_.bodies[body];
-    if (b.isKinematic() && w_.isMovingKinematic(body)) {
+    if (w_.isMovingKinematic(body)) {
       const BodyPath& path = im_.path[body];
       center = path.center(path.s(t));
       xf = transformAt(b.local_center, center, path.angle(path.s(t)));
