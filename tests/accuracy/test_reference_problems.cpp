@@ -147,6 +147,8 @@ TEST_CASE("reference problem: collision_oblique") { checkProblem("collision_obli
 TEST_CASE("reference problem: collision_friction") { checkProblem("collision_friction"); }
 TEST_CASE("reference problem: collision_gravity") { checkProblem("collision_gravity"); }
 TEST_CASE("reference problem: slope_bounce") { checkProblem("slope_bounce"); }
+TEST_CASE("reference problem: kinematic_paddle") { checkProblem("kinematic_paddle"); }
+TEST_CASE("reference problem: kinematic_spinner") { checkProblem("kinematic_spinner"); }
 TEST_CASE("reference problem: pendulum_revolute") { checkProblem("pendulum_revolute"); }
 TEST_CASE("reference problem: pendulum_small") { checkProblem("pendulum_small"); }
 TEST_CASE("reference problem: pendulum_large") { checkProblem("pendulum_large"); }
@@ -191,7 +193,8 @@ TEST_CASE("reference problems: every file is gated above, with stored errors for
   std::set<std::string> gated = {"free_fall", "drag_projectile", "sho", "damped_under", "damped_critical", "damped_over",
                                  "two_body_spring", "kepler", "time_limited_force", "time_limited_naive", "incline",
                                  "disc_slide_roll", "bouncing_ball", "bouncing_ball_drag", "collision_1d", "collision_oblique",
-                                 "collision_friction", "collision_gravity", "slope_bounce", "pendulum_revolute",
+                                 "collision_friction", "collision_gravity", "slope_bounce", "kinematic_paddle", "kinematic_spinner",
+                                 "pendulum_revolute",
                                  "pendulum_small", "pendulum_large", "rod_pendulum", "double_pendulum", "slider_incline", "atwood", "wheel_spring", "four_bar", "damped_body"};
   for (const auto& file : problemFiles(problemDirectory())) {
     const std::string name = file.stem().string();

@@ -371,3 +371,59 @@ TEST_CASE("located impacts: a bounce inside a step is reported as begin, hit and
   CHECK(hits == 1);
   CHECK(ends == 1);
 }
+
+TEST_CASE("located impacts: a kinematic paddle rising at v_p hits a falling ball at the closed-form time; it leaves at v_p − e (v − v_p)") {
+  // In the paddle's (inertial) frame the ball falls onto a floor: from a gap h = 2.5 m at relative
+  // velocity u = −v_p it lands after t1 = (u + √(u² + 2 g h)) / g at relative speed √(u² + 2 g h).
+  const double r = 0.5, h = 2.5, vp = 2.0, e = 0.5;
+  const double t1 = (-vp + std::sqrt(vp * vp + 2 * g * h)) / g, u1 = std::sqrt(vp * vp + 2 * g * h);
+  for (double dt : {1.0 / 30, 1.0 / 60, 1.0 / 120, 1.0 / 240}) {
+    CAPTURE(dt);
+    World w;
+    BodyDef p;
+    p.type = BodyType::Kinematic;
+    p.shape = makeBox(8, 0.4);
+    p.position = {0, -0.2};
+    p.velocity = {0, vp};
+    const BodyId paddle = w.createBody(p);
+    const BodyId b = ball(w, {0, r + h}, e, r);
+    int impacts = 0;
+    while (w.time() < 0.9) {
+      w.step(dt);
+      for (const World::Impact& im : w.impacts()) {
+        ++impacts;
+        CHECK(std::abs(im.time - t1) < 1e-12);
+        CHECK(std::abs(im.approach_speed - u1) < 1e-12);
+        CHECK(im.separating);
+        CHECK((im.a == paddle || im.b == paddle));
+      }
+      if (impacts == 0) continue;
+      // After it: v = v_p + e u1 − g (t − t1), a parabola from the paddle's top at t1.
+      const double s = w.time() - t1, y1 = r + vp * t1;
+      CHECK(std::abs(w.body(b).velocity.y() - (vp + e * u1 - g * s)) < 1e-12);
+      CHECK(std::abs(w.body(b).center.y() - (y1 + (vp + e * u1) * s - 0.5 * g * s * s)) < 1e-12);
+    }
+    CHECK(impacts == 1);
+  }
+}
+
+TEST_CASE("located impacts: a ball carried by a rising kinematic paddle is persistent contact, not located") {
+  World w;
+  BodyDef p;
+  p.type = BodyType::Kinematic;
+  p.shape = makeBox(8, 0.4);
+  p.position = {0, -0.2};
+  p.velocity = {0, 1};
+  w.createBody(p);
+  const BodyId b = ball(w, {0, 0.5 + 0.3}, 0.0, 0.5);
+  int located = 0;
+  for (int i = 0; i < 60; ++i) {
+    w.step(1.0 / 60.0);
+    located += w.stats().impact_bodies;
+  }
+  // Located while it falls the 0.3 m gap and until it lands (inelastic: it stays on); carried after.
+  CHECK(located > 0);
+  CHECK(w.stats().impact_bodies == 0);
+  CHECK(w.body(b).velocity.y() == Approx(1.0).epsilon(1e-6));
+  CHECK(std::abs(w.body(b).center.y() - 0.5 - w.time() * 1.0) < 0.01);  // on the paddle's top, within the contact slop
+}

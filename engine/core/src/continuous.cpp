@@ -20,7 +20,7 @@
 // bounce with RK4 at dt = 1/30.
 // Bodies whose impacts are located (event_location.cpp) are not swept against static bodies: the
 // search along their path already finds the first contact; located bullets are still swept against
-// the moving bodies that are not located.
+// the dynamic bodies that are not located (kinematic bodies are in the search).
 // Bullets (BodyDef::bullet) are also swept against moving bodies that are not bullets, where the
 // integration left them, so that a fast small body stops at a thin moving one.
 #include <algorithm>
@@ -102,6 +102,7 @@ void sweepFastBodies(WorldImpl& w) {
       if (wall.body.index == i || wall.sensor || !shouldCollide(mover.filter, wall.filter)) return;
       if (located(wall.body.index)) return;  // two located bodies: their impacts are located
       const Body& wall_body = w.bodies[wall.body.index];
+      if (wall_body.isKinematic() && located(i)) return;  // its impacts with kinematic bodies are located too
       if (!wall_body.enabled || !swept.overlaps(computeAabb(wall.geometry, wall_body.xf))) return;
       if (wall_body.isDynamic() && w.jointBlocksCollision(i, wall.body.index)) return;
       const double d0 = separationLowerBound(mover.geometry, start, wall.geometry, wall_body.xf);

@@ -6,7 +6,8 @@
 //              every integrator, RK4 included, is first order on such forces (docs/design/accuracy.md §3.7).
 //   located    an impact (WorldDef::impacts = Located, in the islands impact_rule.cpp picks): the
 //              earliest time in an interval at which a pair's gap reaches zero, found on the
-//              integrator's own dense output (dense_output.cpp) by a deterministic root search
+//              integrator's own dense output (dense_output.cpp), a kinematic body's along its
+//              straight line (it moves at a constant velocity within the step), by a deterministic root search
 //              (impact_search.cpp). The bodies of the islands involved are integrated again from
 //              the start of their piece exactly to that time, the impact is resolved there with
 //              every touching point of those bodies at once (impact_solve.cpp), and their
@@ -77,7 +78,7 @@ class Timeline {
     im_.mover_t0.assign(im_.mover_first.size() - 1, 0.0);
     im_.resolved.clear();
     for (uint32_t i : im_.bodies) im_.reach[i] = reachOf(w_, w_.bodies[i]);
-    collectStatics();
+    collectObstacles();
     const bool single = im_.intervals.size() == 1;
     if (!single)
       for (uint32_t i : im_.bodies) restore(w_.bodies[i], {w_.start_center[i], w_.start_angle[i], w_.start_velocity[i],
@@ -154,15 +155,37 @@ class Timeline {
     for (uint32_t i : bodiesOf(m)) im_.mask[i] = 0;
   }
 
-  void collectStatics() {
-    im_.statics.clear();
-    im_.static_boxes.clear();
+  // The shapes the located bodies may hit besides one another's: static shapes where they are, and
+  // kinematic shapes along their paths. A kinematic body moves by its velocity alone, constant over
+  // the step (integrator.cpp moveKinematicBodies: c += h v, θ += h ω), so its path over the whole
+  // step is the straight line c(t) = c₀ + t v, θ(t) = θ₀ + t ω, which explicit Euler's dense output
+  // is exactly (dense_output.cpp). The impact rule needs nothing else: a kinematic body has infinite
+  // mass (inv_mass = inv_inertia = 0), so impact_solve.cpp's relative velocity at the contact,
+  // v_B + ω_B × r_B − v_A − ω_A × r_A, with the kinematic body's velocity and lever arm at the impact,
+  // gives v' = v − (1 + e) ((v − v_k) · n) n and the friction rule of a static obstacle.
+  void collectObstacles() {
+    im_.obstacles.clear();
+    im_.obstacle_boxes.clear();
+    if (w_.kinematic_bodies > 0) {
+      const double step = im_.intervals.back().t0 + im_.intervals.back().h;
+      for (uint32_t k = 0; k < w_.bodies.size(); ++k) {
+        if (!w_.isMovingKinematic(k)) continue;
+        const Body& b = w_.bodies[k];
+        const double reach = reachOf(w_, b);
+        const PathState start{b.center, b.angle, b.velocity, b.angular_velocity};
+        const PathState end{b.center + step * b.velocity, b.angle + step * b.angular_velocity, b.velocity,
+                            b.angular_velocity};
+        im_.path[k] = makePath(Integrator::ExplicitEuler, start, end, 0.0, step, reach,
+                               touchTolerance(b.center.cwiseAbs().maxCoeff() + reach));
+      }
+    }
     for (uint32_t s = 0; s < w_.shapes.size(); ++s) {
       if (!w_.shape_alive[s] || w_.shapes[s].sensor) continue;
       const Body& b = w_.bodyOf(s);
-      if (!b.isStatic() || !b.enabled) continue;
-      im_.statics.push_back(s);
-      im_.static_boxes.push_back(computeAabb(w_.shapes[s].geometry, b.xf));
+      if (b.isDynamic() || !b.enabled) continue;
+      im_.obstacles.push_back(s);
+      const uint32_t k = w_.shapes[s].body.index;
+      im_.obstacle_boxes.push_back(w_.isMovingKinematic(k) ? im_.path[k].box : computeAabb(w_.shapes[s].geometry, b.xf));
     }
   }
 
@@ -177,15 +200,15 @@ class Timeline {
     im_.pairs.push_back(p);
   }
 
-  // The pairs of body i's shapes with the static shapes and with the located bodies j that `take`
+  // The pairs of body i's shapes with the static and kinematic shapes and with the located bodies j that `take`
   // accepts, whose boxes along their pieces meet.
   template <typename Take>
   void addPairs(uint32_t i, Take take) {
     const Body& b = w_.bodies[i];
     const Aabb& box = im_.path[i].box;
-    for (size_t k = 0; k < im_.statics.size(); ++k) {
-      if (!box.overlaps(im_.static_boxes[k])) continue;
-      for (ShapeId s : b.shapes) addPair(s.index, im_.statics[k]);
+    for (size_t k = 0; k < im_.obstacles.size(); ++k) {
+      if (!box.overlaps(im_.obstacle_boxes[k])) continue;
+      for (ShapeId s : b.shapes) addPair(s.index, im_.obstacles[k]);
     }
     for (uint32_t j : im_.bodies) {
       if (j == i || !take(j) || !box.overlaps(im_.path[j].box)) continue;
@@ -195,7 +218,7 @@ class Timeline {
   }
 
   // A shape as the search sees it: a located body's along its path, unless `now` (placed where its
-  // body is); any other body's where it is.
+  // body is); a moving kinematic body's along its path; any other body's where it is.
   MovingShape moving(uint32_t shape, bool now) const {
     MovingShape m;
     const Body& b = w_.bodyOf(shape);
@@ -203,8 +226,22 @@ class Timeline {
     m.local_center = b.local_center;
     m.fixed = b.xf;
     const uint32_t body = w_.shapes[shape].body.index;
-    if (!now && im_.located[body]) m.path = &im_.path[body];
+    if (im_.located[body] ? !now : w_.isMovingKinematic(body)) m.path = &im_.path[body];
     return m;
+  }
+
+  // Where body `body` is at time t, the moment of an impact: a moving kinematic body along its path,
+  // any other where it is (the involved located bodies have been integrated to t).
+  void placeAt(uint32_t body, double t, Transform& xf, Vec2& center) const {
+    const Body& b = w_.bodies[body];
+    if (w_.isMovingKinematic(body)) {
+      const BodyPath& path = im_.path[body];
+      center = path.center(path.s(t));
+      xf = transformAt(b.local_center, center, path.angle(path.s(t)));
+      return;
+    }
+    xf = b.xf;
+    center = b.center;
   }
 
   double scaleOf(const ImpactPair& p) const {
@@ -283,15 +320,18 @@ class Timeline {
     for (uint32_t k = 0; k < im_.pairs.size(); ++k) {
       ImpactPair& p = im_.pairs[k];
       const bool event = p.time <= t + simultaneous_;
-      const bool in_a = isInvolved(p.a) || w_.bodies[p.a].isStatic(), in_b = isInvolved(p.b) || w_.bodies[p.b].isStatic();
+      const bool in_a = isInvolved(p.a) || !w_.bodies[p.a].isDynamic(), in_b = isInvolved(p.b) || !w_.bodies[p.b].isDynamic();
       if (!in_a || !in_b) continue;
       const BodyShape &sa = w_.shapes[p.shape_a], &sb = w_.shapes[p.shape_b];
-      const Body &a = w_.bodies[p.a], &b = w_.bodies[p.b];
+      Transform xa, xb;
+      Vec2 ca, cb;
+      placeAt(p.a, t, xa, ca);
+      placeAt(p.b, t, xb, cb);
       const double tolerance = touchTolerance(scaleOf(p));
-      const double gap = separationLowerBound(sa.geometry, a.xf, sb.geometry, b.xf);
+      const double gap = separationLowerBound(sa.geometry, xa, sb.geometry, xb);
       if (event) im_.resolved.push_back(pairKey(p.shape_a, p.shape_b));
       if (!event && gap > tolerance) continue;
-      const Manifold m = collideShapes(sa.geometry, a.xf, sb.geometry, b.xf, std::max(gap, 0.0) + w_.def.contact_margin);
+      const Manifold m = collideShapes(sa.geometry, xa, sb.geometry, xb, std::max(gap, 0.0) + w_.def.contact_margin);
       if (m.count == 0) continue;
       double deepest = m.points[0].separation;
       for (int i = 1; i < m.count; ++i) deepest = std::min(deepest, m.points[i].separation);
@@ -309,8 +349,8 @@ class Timeline {
         q.a = p.a;
         q.b = p.b;
         q.normal = m.normal;
-        q.ra = m.points[i].point - a.center;
-        q.rb = m.points[i].point - b.center;
+        q.ra = m.points[i].point - ca;
+        q.rb = m.points[i].point - cb;
         q.restitution = std::max(sa.material.restitution, sb.material.restitution);
         q.friction = std::sqrt(sa.material.friction * sb.material.friction);
         q.static_friction = std::sqrt(sa.material.static_friction * sb.material.static_friction);
@@ -384,7 +424,7 @@ void settleLocatedContacts(WorldImpl& w) {
   for (size_t k = 0; k < w.contacts.size(); ++k) {
     const Contact& c = w.contacts[k];
     const bool la = im.located[c.a], lb = im.located[c.b];
-    if (!(la || lb) || !(la || w.bodies[c.a].isStatic()) || !(lb || w.bodies[c.b].isStatic())) continue;
+    if (!(la || lb) || !(la || !w.bodies[c.a].isDynamic()) || !(lb || !w.bodies[c.b].isDynamic())) continue;
     if (!locatablePair(w, c.shape_a, c.shape_b)) continue;
     const double scale = std::max(w.bodies[c.a].center.cwiseAbs().maxCoeff(), w.bodies[c.b].center.cwiseAbs().maxCoeff());
     bool touching = false;

@@ -60,7 +60,8 @@ inline Transform transformAt(const Vec2& local_center, const Vec2& c, double ang
 }
 
 // A shape on the move for the search: its geometry and its body's path (nullptr: the body does not
-// move during the step, and `fixed` places it).
+// move during the step, and `fixed` places it). A moving kinematic body's path is its straight line
+// over the whole step (t0 = 0).
 struct MovingShape {
   const Shape* shape = nullptr;
   const BodyPath* path = nullptr;
@@ -115,8 +116,8 @@ struct LocatedImpact {
   bool separating = false;      // the shapes move apart after it (a bounce), not into resting contact
 };
 
-// A pair the event loop watches: a shape of a located body and a static shape or a shape of
-// another located body.
+// A pair the event loop watches: a shape of a located body and a static or kinematic shape or a
+// shape of another located body.
 struct ImpactPair {
   uint32_t shape_a = 0, shape_b = 0;  // slots, shape_a < shape_b
   uint32_t a = 0, b = 0;              // body slots of shape_a and shape_b
@@ -133,10 +134,10 @@ struct ImpactScratch {
   std::vector<double> mover_t0;     // per mover: start of its current piece, after the step began [s]
   std::vector<char> mask;           // per body slot: integrate this one (integrateInterval)
   std::vector<PathState> piece_start;  // per body slot: state at the start of its current piece
-  std::vector<BodyPath> path;       // per body slot
+  std::vector<BodyPath> path;       // per body slot: the located bodies' and the moving kinematic bodies'
   std::vector<double> reach;        // per body slot
-  std::vector<uint32_t> statics;    // static shape slots that may be hit
-  std::vector<Aabb> static_boxes;
+  std::vector<uint32_t> obstacles;  // static and kinematic shape slots that may be hit
+  std::vector<Aabb> obstacle_boxes; // where they are, along the step for a moving kinematic one
   std::vector<ImpactPair> pairs;
   std::vector<uint64_t> resolved;   // shape pairs resolved in this step: not events again in it
   std::vector<char> involved;       // per mover: takes part in the current impact
