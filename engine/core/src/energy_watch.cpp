@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "joint.h"
 #include "world_impl.h"
@@ -22,12 +21,13 @@ double kineticOf(const Body& b) {
 
 // Can the joint put energy in: a motor, a spring (the stiffness of a joint spring depends on the
 // bodies' masses, so its energy is not among World::potentialEnergy's), or a kinematic body?
-bool jointIsSource(const WorldImpl& w, const Joint& j) {
+// `kinematic`: the world has kinematic bodies (else their types are not looked up).
+bool jointIsSource(const WorldImpl& w, const Joint& j, bool kinematic) {
   const JointDef& d = j.def;
-  const auto kinematic = [&](uint32_t slot) { return slot != kWorldSlot && w.bodies[slot].isKinematic(); };
+  const auto moved = [&](uint32_t slot) { return slot != kWorldSlot && w.bodies[slot].isKinematic(); };
   return d.enable_motor || d.enable_spring || d.type == JointType::Motor ||
-         (d.type == JointType::Weld && (d.linear_hertz > 0.0 || d.angular_hertz > 0.0)) || kinematic(j.a) ||
-         kinematic(j.b);
+         (d.type == JointType::Weld && (d.linear_hertz > 0.0 || d.angular_hertz > 0.0)) ||
+         (kinematic && (moved(j.a) || moved(j.b)));
 }
 
 // How fast the joint's force and torque can do work now: the anchors' relative speed and spin;
@@ -67,14 +67,14 @@ double workBound(const WorldImpl& w, const EnergyWatch& e, double h) {
                    e.turn[i] * std::max(e.spin[i], std::abs(b.angular_velocity)));
     }
   }
-  for (uint32_t k = 0; k < w.joints.size() && k < e.joint_slide.size(); ++k) {
-    const Joint& j = w.joints[k];
-    if (!j.alive || !jointIsSource(w, j)) continue;
+  for (const EnergyWatch::SourceJoint& source : e.source_joints) {
+    const Joint& j = w.joints[source.slot];
+    if (!j.alive) continue;
     Vec2 force;
     double torque;
     jointReaction(j, force, torque);
     const Motion now = jointMotion(w, j);
-    work += h * (force.norm() * std::max(now.slide, e.joint_slide[k]) + std::abs(torque) * std::max(now.spin, e.joint_spin[k]));
+    work += h * (force.norm() * std::max(now.slide, source.slide) + std::abs(torque) * std::max(now.spin, source.spin));
   }
   if (w.kinematic_bodies > 0 || w.surface_shapes > 0 || !w.contact_surfaces.empty()) {
     for (size_t c = 0; c < w.contacts.size(); ++c) {
@@ -96,31 +96,6 @@ double workBound(const WorldImpl& w, const EnergyWatch& e, double h) {
   return work;
 }
 
-// What contacts may give back pushing overlaps apart: Σ m (½ v_push² + |g| r) (energy_watch.h).
-double pushAllowance(const WorldImpl& w) {
-  const double push = w.def.contact_push_speed;
-  double allowance = 0.0;
-  for (uint32_t i = 0; i < w.bodies.size(); ++i) {
-    const Body& b = w.bodies[i];
-    if (!w.alive[i] || !b.isDynamic()) continue;
-    const double g = std::abs(b.gravity_scale) * b.gravityOr(w.def.gravity).norm();
-    allowance += b.mass * (0.5 * push * push + g * b.max_extent);
-  }
-  return allowance;
-}
-
-// The body that gained the most kinetic energy in the step: the one the incident names.
-uint32_t fastestGainer(const WorldImpl& w, const EnergyWatch& e) {
-  uint32_t best = UINT32_MAX;
-  double most = -std::numeric_limits<double>::infinity();
-  for (uint32_t i = 0; i < w.bodies.size(); ++i) {
-    if (!w.alive[i] || !w.bodies[i].isDynamic()) continue;
-    const double gain = kineticOf(w.bodies[i]) - (i < e.kinetic.size() ? e.kinetic[i] : 0.0);
-    if (gain > most) most = gain, best = i;
-  }
-  return best;
-}
-
 }  // namespace
 
 void EnergyWatch::noteForce(uint32_t i, const Wrench& wr) {
@@ -134,31 +109,13 @@ void beginEnergyWatch(WorldImpl& w) {
   EnergyWatch& e = w.energy;
   if (e.reported) return;
   const size_t n = w.bodies.size();
-  e.speed.resize(n);
-  e.spin.resize(n);
-  e.kinetic.resize(n);
-  double kinetic = 0.0;
-  for (uint32_t i = 0; i < n; ++i) {
-    const Body& b = w.bodies[i];
-    e.speed[i] = b.velocity.norm();
-    e.spin[i] = std::abs(b.angular_velocity);
-    e.kinetic[i] = w.alive[i] && b.isDynamic() ? kineticOf(b) : 0.0;
-    kinetic += e.kinetic[i];
-  }
-  const double potential = w.potentialEnergy();
-  const double energy = kinetic + potential;
-  if (!e.started) {
-    e.started = true;
-    e.budget = kinetic + std::max(0.0, potential - w.gravityPotentialEnergy());  // K₀ + what forces store
-    e.potential_first = e.potential_least = potential;
-  } else if (energy > e.energy_end) {
-    e.budget += energy - e.energy_end;  // an edit between steps put it in
-  }
-  e.energy_start = energy;
-  e.potential_least = std::min(e.potential_least, potential);
+  // The bodies' speeds at the start bound the work of forces that put energy in: kept only when
+  // some such force acts (one pass over the bodies either way).
   bool forces = false;
   for (const ForceEntry& f : w.forces) forces |= f.alive && f.force->putsEnergyIn();
-  if (forces || e.forces_noted) {
+  if (forces) {
+    e.speed.resize(n);
+    e.spin.resize(n);
     e.push.assign(n, 0.0);
     e.turn.assign(n, 0.0);
   } else {
@@ -166,21 +123,71 @@ void beginEnergyWatch(WorldImpl& w) {
     e.turn.clear();
   }
   e.forces_noted = false;
-  e.joint_slide.assign(w.joints.size(), 0.0);
-  e.joint_spin.assign(w.joints.size(), 0.0);
-  for (uint32_t k = 0; k < w.joints.size(); ++k) {
-    const Joint& j = w.joints[k];
-    if (!j.alive || !jointIsSource(w, j)) continue;
+  double kinetic = 0.0, gravity = 0.0;
+  for (uint32_t i = 0; i < n; ++i) {
+    const Body& b = w.bodies[i];
+    const bool counted = w.alive[i] && b.isDynamic();
+    if (counted) {
+      kinetic += kineticOf(b);
+      gravity -= b.mass * b.gravity_scale * b.gravityOr(w.def.gravity).dot(b.center);
+    }
+    if (forces) {
+      e.speed[i] = counted ? b.velocity.norm() : 0.0;
+      e.spin[i] = counted ? std::abs(b.angular_velocity) : 0.0;
+    }
+  }
+  const double stored = w.forces.empty() ? 0.0 : w.forcePotentialEnergy();
+  const double potential = gravity + stored;
+  const double energy = kinetic + potential;
+  if (!e.started) {
+    e.started = true;
+    e.budget = kinetic + std::max(0.0, stored);  // K₀ + what forces store
+    e.potential_first = e.potential_least = potential;
+  } else if (energy > e.energy_end) {
+    e.budget += energy - e.energy_end;  // an edit between steps put it in
+  }
+  e.energy_start = energy;
+  e.potential_least = std::min(e.potential_least, potential);
+  // The joints that may put energy in, and their anchors' motion now. A world of plain joints
+  // (no motor, spring or kinematic body) keeps the list empty.
+  // Listed again only when joints or body types changed (a world of 20 000 joints is not walked
+  // every step).
+  if (e.joints_listed != w.joint_edits || e.joints_listed_count != w.joints.size()) {
+    e.source_joints.clear();
+    const bool kinematic = w.kinematic_bodies > 0;
+    for (uint32_t k = 0; k < w.joints.size(); ++k)
+      if (w.joints[k].alive && jointIsSource(w, w.joints[k], kinematic)) e.source_joints.push_back({k, 0.0, 0.0});
+    e.joints_listed = w.joint_edits;
+    e.joints_listed_count = w.joints.size();
+  }
+  for (EnergyWatch::SourceJoint& source : e.source_joints) {
+    const Joint& j = w.joints[source.slot];
+    if (!j.alive) continue;  // broken in an earlier step
     const Motion m = jointMotion(w, j);
-    e.joint_slide[k] = m.slide;
-    e.joint_spin[k] = m.spin;
+    source.slide = m.slide;
+    source.spin = m.spin;
   }
 }
 
 void endEnergyWatch(WorldImpl& w) {
   EnergyWatch& e = w.energy;
   if (e.reported || !e.started) return;
-  const double kinetic = w.kineticEnergy(), potential = w.potentialEnergy();
+  // One pass: kinetic and gravity's energy, what contacts may give back (energy_watch.h), and the
+  // body with the most kinetic energy (the one an incident names).
+  const double push = w.def.contact_push_speed;
+  double kinetic = 0.0, gravity = 0.0, give_back = 0.0, most = -1.0;
+  uint32_t named = UINT32_MAX;
+  for (uint32_t i = 0; i < w.bodies.size(); ++i) {
+    const Body& b = w.bodies[i];
+    if (!w.alive[i] || !b.isDynamic()) continue;
+    const Vec2 g = b.gravity_scale * b.gravityOr(w.def.gravity);
+    const double k = kineticOf(b);
+    kinetic += k;
+    gravity -= b.mass * g.dot(b.center);
+    give_back += b.mass * (0.5 * push * push + g.norm() * b.max_extent);
+    if (k > most) most = k, named = i;
+  }
+  const double potential = gravity + (w.forces.empty() ? 0.0 : w.forcePotentialEnergy());
   const double energy = kinetic + potential;
   const double work = workBound(w, e, w.dt);
   e.excess += energy - e.energy_start - work;
@@ -188,18 +195,17 @@ void endEnergyWatch(WorldImpl& w) {
   e.energy_end = energy;
   e.potential_least = std::min(e.potential_least, potential);
   if (!std::isfinite(energy)) return;  // the non-finite case is the NaN firewall's and the runner's
-  const double allowed = e.budget + (e.potential_first - e.potential_least) + pushAllowance(w);
+  const double allowed = e.budget + (e.potential_first - e.potential_least) + give_back;
   if (!(e.excess > kBlowUpFactor * allowed)) return;
   e.reported = true;
-  const uint32_t i = fastestGainer(w, e);
-  if (i == UINT32_MAX) return;  // no dynamic body: the energy is all in kinematic motion
-  const Body& b = w.bodies[i];
+  if (named == UINT32_MAX) return;  // no dynamic body: the energy is all in kinematic motion
+  const Body& b = w.bodies[named];
   Incident incident{b.uid, b.name, w.step_count, w.clock.t - w.dt, ""};
   incident.frozen = false;
   incident.cause = "the energy grew by " + formatNumber(e.excess) +
                    " J more than forces, motors and kinematic bodies put in, past the bound of " + formatNumber(kBlowUpFactor * allowed) +
                    " J (docs/stability.md, \"Blow-ups caught\"); the energy is now " + formatNumber(energy) +
-                   " J, and this body gained the most kinetic energy in the step";
+                   " J, and this body has the most kinetic energy";
   w.incidents.push_back(std::move(incident));
 }
 

@@ -26,6 +26,7 @@
 // step (explicit Euler on a spring by 1 + (ωh)²) and passes 100 S within a few steps.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "rigidlab/force.h"
@@ -42,11 +43,17 @@ struct EnergyWatch {
   double excess = 0.0;          // X [J]
   double budget = 0.0;          // K₀ + U₀ + Σ W + Σ edits [J]
   double potential_first = 0.0, potential_least = 0.0;  // V₀, V_least [J]
-  std::vector<double> speed, spin;  // per body slot: |v|, |ω| at the start of the step
-  std::vector<double> kinetic;      // per body slot: kinetic energy at the start of the step
-  std::vector<double> push, turn;   // per body slot: largest |F|, |τ| of forces that put energy in
-  bool forces_noted = false;        // push and turn hold something this step
-  std::vector<double> joint_slide, joint_spin;  // per joint slot: anchors' relative speed, spin at the start
+  // Per body slot, when some force puts energy in (else empty): |v|, |ω| at the start of the step,
+  // and the largest |F|, |τ| of such forces this step.
+  std::vector<double> speed, spin, push, turn;
+  bool forces_noted = false;  // push and turn hold something this step
+  struct SourceJoint {        // a joint that may put energy in, and its anchors' motion at the start
+    uint32_t slot;
+    double slide, spin;
+  };
+  std::vector<SourceJoint> source_joints;
+  uint64_t joints_listed = UINT64_MAX;  // WorldImpl::joint_edits when source_joints was listed
+  size_t joints_listed_count = 0;       // and the number of joint slots then
 
   // A force that puts energy in (Force::putsEnergyIn) acted on body slot i with `wr`.
   void noteForce(uint32_t i, const Wrench& wr);

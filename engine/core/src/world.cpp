@@ -398,8 +398,10 @@ double WorldImpl::gravityPotentialEnergy() const {
 
 double World::potentialEnergy() const { return impl_->potentialEnergy(); }
 
-double WorldImpl::potentialEnergy() const {
-  double e = gravityPotentialEnergy();
+double WorldImpl::potentialEnergy() const { return gravityPotentialEnergy() + forcePotentialEnergy(); }
+
+double WorldImpl::forcePotentialEnergy() const {
+  double e = 0.0;
   for (const ForceEntry& f : forces) {
     if (!f.alive) continue;
     const BodyState a = stateOf(bodies[f.a.index]);

@@ -192,6 +192,7 @@ BodyId World::createBody(const BodyDef& def) {
 }
 
 void World::destroyBody(BodyId id) {
+  ++impl_->joint_edits;  // the energy watch lists the joints that put energy in anew
   WorldImpl& w = *impl_;
   w.requireUnlocked("destroyBody");
   w.get(id);
@@ -281,6 +282,7 @@ void World::setAngularVelocity(BodyId id, double angular_velocity) {
 }
 
 void World::setType(BodyId id, BodyType type) {
+  ++impl_->joint_edits;  // the energy watch lists the joints that put energy in anew
   WorldImpl& w = *impl_;
   w.requireUnlocked("setType");
   Body& b = w.get(id);

@@ -160,9 +160,11 @@ struct WorldImpl {
   StepStats stats;
   std::vector<Incident> incidents;  // NaN firewall reports (nan_guard.cpp), blow-ups (energy_watch.cpp)
   EnergyWatch energy;               // the energy balance of each step (energy_watch.h)
+  uint64_t joint_edits = 0;         // joints created, destroyed, updated; bodies retyped or destroyed
   double kineticEnergy() const;     // World::kineticEnergy, potentialEnergy (world.cpp)
   double potentialEnergy() const;
   double gravityPotentialEnergy() const;
+  double forcePotentialEnergy() const;  // what forces store (springs)
 
   // Scratch reused by every step, so a step in steady state allocates nothing.
   std::vector<BodyState> states;      // per slot: state seen by forces

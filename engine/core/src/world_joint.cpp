@@ -109,6 +109,7 @@ bool WorldImpl::jointBlocksCollision(uint32_t a, uint32_t b) const {
 }
 
 JointId World::createJoint(const JointDef& in) {
+  ++impl_->joint_edits;  // the energy watch lists the joints that put energy in anew
   WorldImpl& w = *impl_;
   w.requireUnlocked("createJoint");
   JointDef d = in;
@@ -286,6 +287,7 @@ void WorldImpl::releaseJoint(uint32_t index) {
 }
 
 void World::destroyJoint(JointId id) {
+  ++impl_->joint_edits;  // the energy watch lists the joints that put energy in anew
   WorldImpl& w = *impl_;
   w.requireUnlocked("destroyJoint");
   w.get(id);
@@ -306,6 +308,7 @@ bool World::isValid(JointId id) const {
 const JointDef& World::joint(JointId id) const { return impl_->get(id).def; }
 
 void World::updateJoint(JointId id, const JointDef& def) {
+  ++impl_->joint_edits;  // the energy watch lists the joints that put energy in anew
   WorldImpl& w = *impl_;
   w.requireUnlocked("updateJoint");
   Joint& j = w.get(id);
