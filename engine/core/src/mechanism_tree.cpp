@@ -215,22 +215,9 @@ void TreeFactor::factor(const Island& island, const std::vector<Evaluated>& rows
       const uint32_t m = in_use_[g.first + k];
       Eigen::Map<Eigen::Vector3d>(u + 3 * k) = wu * rows[members_[m]].j[j_up_[m]];
     }
-    double largest = 0.0;
-    for (uint32_t k = 0; k < n; ++k) {
-      const uint32_t mk = in_use_[g.first + k];
-      const Eigen::Vector3d& jk = rows[members_[mk]].j[j_up_[mk]];
-      Eigen::Vector3d wd = Eigen::Vector3d::Zero();
-      if (g.down != g.up) wd = w_[g.down] * rows[members_[mk]].j[j_down_[mk]];
-      for (uint32_t q = 0; q <= k; ++q) {
-        const uint32_t mq = in_use_[g.first + q];
-        double v = jk.dot(Eigen::Map<const Eigen::Vector3d>(u + 3 * q));
-        if (g.down != g.up) v += rows[members_[mq]].j[j_down_[mq]].dot(wd);
-        l[k * n + q] = v;
-      }
-      largest = std::max(largest, l[k * n + k]);
-    }
-    if (!ldlt(l, d, n, kSingular * largest) && largest > 0.0) {
-      // Singular: D + εI, from the matrix again (the lower triangle was overwritten).
+    // The lower triangle of D, `shift` added to its diagonal; returns D's largest diagonal entry.
+    const auto fill = [&](double shift) {
+      double largest = 0.0;
       for (uint32_t k = 0; k < n; ++k) {
         const uint32_t mk = in_use_[g.first + k];
         const Eigen::Vector3d& jk = rows[members_[mk]].j[j_up_[mk]];
@@ -240,9 +227,15 @@ void TreeFactor::factor(const Island& island, const std::vector<Evaluated>& rows
           const uint32_t mq = in_use_[g.first + q];
           double v = jk.dot(Eigen::Map<const Eigen::Vector3d>(u + 3 * q));
           if (g.down != g.up) v += rows[members_[mq]].j[j_down_[mq]].dot(wd);
-          l[k * n + q] = v + (q == k ? kShift * largest : 0.0);
+          l[k * n + q] = shift != 0.0 && q == k ? v + shift : v;
         }
+        largest = std::max(largest, l[k * n + k] - shift);
       }
+      return largest;
+    };
+    const double largest = fill(0.0);
+    if (!ldlt(l, d, n, kSingular * largest) && largest > 0.0) {
+      fill(kShift * largest);  // singular: D + εI, from the matrix again (ldlt overwrote the triangle)
       ldlt(l, d, n, 0.0);
     }
     // P = D⁻¹ uᵀ (n × 3, row k at p + 3k), column by column; W̃_up ← W̃_up − u P.
