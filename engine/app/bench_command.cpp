@@ -25,8 +25,9 @@ constexpr const char* kHelp = R"(usage: rigidlab bench [SCENE...] [--reps R] [--
                       [--substeps N] [--iterations N] [--impacts NAME] [--threads N]
 
 Times benchmark scenes (all of them without SCENE arguments), each in its own process. Per scene:
-median and p95 ms per step (only World::step is timed), setup time, the per-stage breakdown,
-contacts, calls into Lua, peak memory, and the peers' stability metrics.
+median and p95 ms per step (only World::step is timed), its CPU time (all threads: below the
+wall time, the step waited for a busy core; above it, the cores it used), setup time, the
+per-stage breakdown, contacts, calls into Lua, peak memory, and the peers' stability metrics.
   --reps R      repetitions, each on a fresh world (default 3)
   --steps N     steps per repetition (default: the scene's own, listed below)
   --json        one JSON line per scene, in the peer programs' format plus rigidlab's fields

@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <stdexcept>
 
 #include "report.h"
@@ -61,10 +62,19 @@ std::string array(const std::vector<double>& v) {
   return s + "]";
 }
 
+// CPU time of the whole process (every thread of the step's pool) [ms]. Beside the wall time of a
+// step it shows what the step had: with one thread, wall above CPU is time spent waiting for a busy
+// core; with several, CPU above wall is the cores used (CPU ÷ wall).
+double processCpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
+
 // Runs one scene (in the child process) and returns its JSON line.
 std::string runScene(const BenchScene& scene, int reps) {
   using Clock = std::chrono::steady_clock;
-  std::vector<double> medians, p95s, means, firsts, totals, setups;
+  std::vector<double> medians, p95s, means, firsts, totals, setups, cpu_medians, cpu_means;
   StepStats stages;  // summed over the measured steps of all repetitions
   long lua_calls = 0, steps = 0;
   int contacts = 0, dynamic = 0;
@@ -78,17 +88,20 @@ std::string runScene(const BenchScene& scene, int reps) {
     BenchTracker tracker;
     SuiteTracker suite;
     const bool in_suite = isSuiteScene(scene.kind);
-    std::vector<double> times;
+    std::vector<double> times, cpu;
     times.reserve(scene.steps);
+    cpu.reserve(scene.steps);
     const long calls_before = bw.luaCalls();
     for (int i = 0; i < scene.steps; ++i) {
       const auto a = Clock::now();
+      const double cpu_start = processCpuMs();  // inside the wall time's interval
       if (bw.before_step) bw.before_step(w, i);
       if (bw.scene_steps) {
         bw.scene->step(scene.dt);
       } else {
         w.step(scene.dt);
       }
+      cpu.push_back(processCpuMs() - cpu_start);
       times.push_back(std::chrono::duration<double, std::milli>(Clock::now() - a).count());
       const StepStats& s = w.stats();
       stages.integrate_ms += s.integrate_ms;
@@ -111,6 +124,10 @@ std::string runScene(const BenchScene& scene, int reps) {
     totals.push_back(total);
     means.push_back(total / times.size());
     firsts.push_back(times.front());
+    cpu_medians.push_back(median(cpu));
+    double cpu_total = 0;
+    for (double t : cpu) cpu_total += t;
+    cpu_means.push_back(cpu_total / cpu.size());
     contacts = 0;
     for (const ContactInfo& c : w.contacts())
       for (int k = 0; k < c.count; ++k)
@@ -140,7 +157,8 @@ std::string runScene(const BenchScene& scene, int reps) {
                   ", \"ms_median_best_rep\": " + fmt(*std::min_element(medians.begin(), medians.end())) +
                   ", \"ms_p95\": " + fmt(median(p95s)) + ", \"ms_mean\": " + fmt(median(means)) +
                   ", \"ms_first_step\": " + fmt(median(firsts)) + ", \"ms_total\": " + fmt(median(totals)) +
-                  ", \"ms_setup\": " + fmt(median(setups)) + ", \"rep_medians\": " + array(medians) +
+                  ", \"ms_setup\": " + fmt(median(setups)) + ", \"cpu_ms_median\": " + fmt(median(cpu_medians)) +
+                  ", \"cpu_ms_mean\": " + fmt(median(cpu_means)) + ", \"rep_medians\": " + array(medians) +
                   ", \"rep_p95\": " + array(p95s) + ", \"contacts_at_end\": " + std::to_string(contacts) +
                   ", \"metrics\": " + metrics + ", \"name\": \"" + scene.name + "\", \"stages_ms\": {\"integrate\": " +
                   fmt(stages.integrate_ms / n) + ", \"forces\": " + fmt(stages.forces_ms / n) +
@@ -194,9 +212,10 @@ std::string runIsolated(const BenchScene& scene, int reps) {
 void printHuman(const JsonValue& r) {
   const JsonValue* stages = r.get("stages_ms");
   const auto stage = [&](const char* k) { return stages ? stages->num(k).value_or(0) : 0.0; };
-  std::printf("%-12s median %8.3f ms  p95 %8.3f ms  setup %7.1f ms  peak %6.1f MiB | forces %.3f integrate %.3f "
+  std::printf("%-12s median %8.3f ms  p95 %8.3f ms  cpu %8.3f ms  setup %7.1f ms  peak %6.1f MiB | forces %.3f integrate %.3f "
               "broad %.3f narrow %.3f solve %.3f correct %.3f ms | %.0f contacts, %.0f Lua calls/step\n",
               r.str("name").value_or("?").c_str(), r.num("ms_median").value_or(0), r.num("ms_p95").value_or(0),
+              r.num("cpu_ms_median").value_or(0),
               r.num("ms_setup").value_or(0), r.num("peak_rss_mb").value_or(0), stage("forces"), stage("integrate"),
               stage("broad_phase"), stage("narrow_phase"), stage("solve"), stage("position_correction"),
               r.num("contacts_at_end").value_or(0), r.num("lua_calls_per_step").value_or(0));

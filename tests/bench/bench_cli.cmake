@@ -126,3 +126,12 @@ if(EXISTS ${fakebin}/called)
   file(READ ${fakebin}/called called)
   message(FATAL_ERROR "bench --compare ran: ${called}")
 endif()
+
+# CPU time per step beside the wall time: positive, and on one thread no more than the wall time
+# (it is read inside the wall time's interval).
+run(0 bench springs --steps 20 --reps 1 --threads 1 --json)
+string(JSON cpu GET "${out}" cpu_ms_median)
+string(JSON wall GET "${out}" ms_median)
+if(NOT cpu GREATER 0 OR cpu GREATER wall)
+  message(FATAL_ERROR "bench springs: cpu_ms_median ${cpu}, ms_median ${wall}\n${out}")
+endif()
