@@ -212,12 +212,9 @@ CaseResult stiffSpringThresholds(const Options&) {
                            fmt(s.max_ratio, 10), s.watch_step < 0 ? "" : std::to_string(s.watch_step), yesNo(gated)});
     }
   r.data.push_back(std::move(data));
-  Picture p;
-  p.name = "stiff_springs";
-  p.data = "stiff_springs";
-  p.title = "Undamped spring, m = 1 kg, 10 s at dt = 1/60: largest energy against ωh";
-  p.xlabel = "ωh = √(k/m)·dt";
-  p.ylabel = "max E/E_0 over the run (above 10^{12}: top edge)";
+  Picture p{.name = "stiff_springs", .data = "stiff_springs",
+              .title = "Undamped spring, m = 1 kg, 10 s at dt = 1/60: largest energy against ωh",
+              .xlabel = "ωh = √(k/m)·dt", .ylabel = "max E/E_0 over the run (above 10^{12}: top edge)"};
   const double ceiling = 1e12;
   for (size_t i = 0; i < integrators().size(); ++i) {
     const std::string name = integrators()[i];

@@ -63,8 +63,8 @@ struct Picture {
   std::string title, xlabel, ylabel;
   bool log_x = true, log_y = true;
   std::string key = "outside right top";  // gnuplot `set key` placement
-  std::vector<Series> series;
-  std::vector<Mark> marks;
+  std::vector<Series> series{};
+  std::vector<Mark> marks{};
 };
 
 struct CaseResult {

@@ -183,13 +183,9 @@ CaseResult massRatio(const Options&) {
   r.tables.push_back(t);
   r.pass = pass && extreme_pass;
 
-  Picture p;
-  p.name = "mass_ratio";
-  p.data = "mass_ratio";
-  p.title = "A 1 kg box under a heavier one on the ground: sink over 5 s at dt = 1/60";
-  p.xlabel = "mass ratio (upper box : 1 kg)";
-  p.ylabel = "sink of the upper box [m]";
-  p.key = "inside left top";
+  Picture p{.name = "mass_ratio", .data = "mass_ratio",
+              .title = "A 1 kg box under a heavier one on the ground: sink over 5 s at dt = 1/60",
+              .xlabel = "mass ratio (upper box : 1 kg)", .ylabel = "sink of the upper box [m]", .key = "inside left top"};
   static const char* const colors[] = {"#1f77b4", "#2ca02c", "#9467bd", "#d62728", "#ff7f0e", "#8c564b"};
   const std::vector<Setting> settings = solverSettings();
   for (size_t i = 0; i < settings.size(); ++i)

@@ -167,12 +167,9 @@ CaseResult sweepChain(const ChainCase& c, bool quick) {
   }
   r.tables.push_back(t);
   // The picture: the largest pin gap against dt, per solver, and the gate.
-  Picture p;
-  p.name = c.name;
-  p.data = c.name;
-  p.title = c.title + ": largest pin gap over " + fmt(seconds) + " s";
-  p.xlabel = "dt [s]";
-  p.ylabel = "largest pin gap at any step [m] (non-finite: top edge)";
+  Picture p{.name = c.name, .data = c.name,
+              .title = c.title + ": largest pin gap over " + fmt(seconds) + " s",
+              .xlabel = "dt [s]", .ylabel = "largest pin gap at any step [m] (non-finite: top edge)"};
   static const char* const colors[] = {"#1f77b4", "#2ca02c", "#d62728"};
   for (size_t i = 0; i < solvers().size(); ++i) {
     const std::string name(contactSolverName(solvers()[i]));
@@ -367,23 +364,15 @@ CaseResult jointLongChains(const Options& options) {
   r.tables.push_back(t);
   r.data.push_back(std::move(data));
 
-  Picture gap;
-  gap.name = "long_chains";
-  gap.data = "long_chains";
-  gap.title = "Chains released horizontally (RK4, dt = 1/60, exact joints): largest pin gap";
-  gap.xlabel = "links";
-  gap.ylabel = "largest pin gap at any step [m] (non-finite: top edge)";
-  gap.key = "inside left top";
+  Picture gap{.name = "long_chains", .data = "long_chains",
+              .title = "Chains released horizontally (RK4, dt = 1/60, exact joints): largest pin gap",
+              .xlabel = "links", .ylabel = "largest pin gap at any step [m] (non-finite: top edge)", .key = "inside left top"};
   gap.series.push_back({"largest pin gap", "links", "max_pin_gap", {}, "#1f77b4", 7, true, 1, 1.0});
   gap.marks.push_back({"gate: 1e-9 m", 1e-9, false, 0, 0, "#d62728"});
   r.pictures.push_back(std::move(gap));
-  Picture time;
-  time.name = "long_chains_time";
-  time.data = "long_chains";
-  time.title = "Chains released horizontally: wall time per step (reported, not gated)";
-  time.xlabel = "links";
-  time.ylabel = "ms per step";
-  time.key = "inside left top";
+  Picture time{.name = "long_chains_time", .data = "long_chains",
+              .title = "Chains released horizontally: wall time per step (reported, not gated)",
+              .xlabel = "links", .ylabel = "ms per step", .key = "inside left top"};
   time.series.push_back({"ms per step", "links", "ms_per_step", {}, "#2ca02c", 9});
   r.pictures.push_back(std::move(time));
   return r;
