@@ -153,7 +153,7 @@ void writeMarkdown(const std::filesystem::path& file, const std::vector<CaseResu
       md << "- skipped: " << s << "; run it with `rigidlab stability --long --cases " << r.name << (options.quick ? " --quick" : "")
          << "`\n";
     for (const std::string& n : r.notes) md << "- " << n << "\n";
-    if (!r.notes.empty()) md << "\n";
+    if (!r.notes.empty() || !r.skipped.empty()) md << "\n";
     if (!r.figures.empty()) {
       md << "| figure | value |\n|---|---|\n";
       for (const Figure& f : r.figures)
