@@ -4,13 +4,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
 
+#include "gnuplot_script.h"
 #include "rigidlab/lua/scene.h"
 
 namespace rigidlab::app::accuracy {
@@ -65,30 +65,6 @@ std::vector<const Row*> rowsOf(const ReportInput& in, const Problem* p, const st
   for (const Row& r : in.rows)
     if (r.problem == p && r.integrator == integrator) out.push_back(&r);
   return out;
-}
-
-// Gnuplot style per integrator: colour and filled/open point types.
-struct Style {
-  const char* color;
-  int filled, open;
-  int dash = 1;  // implicit_euler is dashed: it often coincides with semi-implicit Euler
-};
-Style styleOf(const std::string& integrator, size_t index) {
-  if (integrator == "euler") return {"#d62728", 7, 6};
-  if (integrator == "semi_implicit_euler") return {"#1f77b4", 5, 4};
-  if (integrator == "rk4") return {"#2ca02c", 9, 8};
-  if (integrator == "implicit_euler") return {"#9467bd", 13, 12, 2};
-  static const Style extra[] = {{"#ff7f0e", 11, 10}, {"#8c564b", 15, 14}, {"#e377c2", 7, 6}};
-  return extra[index % 3];
-}
-
-std::string gpString(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
-  }
-  return out + "\"";
 }
 
 }  // namespace
@@ -502,25 +478,13 @@ std::optional<std::string> writePlots(const ReportInput& in, const std::filesyst
   constexpr int kScene = 1, kIntegrator = 2, kDt = 3, kWall = 9, kErr = 12, kStatus = 20;
   gp << "# Pictures of the accuracy report, made from accuracy.csv (and energy_<problem>.csv).\n"
         "# Re-run by hand with: gnuplot plots.gp (in this directory). Written by rigidlab accuracy.\n"
-        "set datafile separator comma\n"
-        "set encoding utf8\n"
-        "set grid lw 0.5 lc rgb '#dddddd'\n"
-        "set key font ',9' spacing 1.1\n"
-        "set format x '10^{%L}'\nset format y '10^{%L}'\n";
+     << gnuplot::kPreamble;
   const auto sel = [&](const Problem* p, const std::string& i, bool ok) {
-    return "(strcol(" + std::to_string(kScene) + ") eq " + gpString(p->name) + " && strcol(" +
-           std::to_string(kIntegrator) + ") eq " + gpString(i) + " && strcol(" + std::to_string(kStatus) + ") " +
+    return "(strcol(" + std::to_string(kScene) + ") eq " + gnuplot::quoted(p->name) + " && strcol(" +
+           std::to_string(kIntegrator) + ") eq " + gnuplot::quoted(i) + " && strcol(" + std::to_string(kStatus) + ") " +
            (ok ? "eq" : "ne") + " \"ok\")";
   };
-  const auto terminals = [&](const std::string& stem, const std::string& body) {
-    for (const char* fmt : {"svg", "png"}) {
-      if (std::string(fmt) == "svg")
-        gp << "set terminal svg size 900,520 dynamic enhanced font 'sans,12' background '#ffffff'\n";
-      else
-        gp << "set terminal pngcairo size 1000,600 enhanced font 'sans,11' background '#ffffff'\n";
-      gp << "set output '" << stem << '.' << fmt << "'\n" << body << "unset output\n";
-    }
-  };
+  const auto terminals = [&](const std::string& stem, const std::string& body) { gnuplot::writeTerminals(gp, stem, body); };
 
   for (size_t pi = 0; pi < in.problems.size(); ++pi) {
     const Problem* p = in.problems[pi];
@@ -541,8 +505,8 @@ std::optional<std::string> writePlots(const ReportInput& in, const std::filesyst
 
     // Convergence: err against dt, fitted order in the legend, reference slopes 1, 2, 4.
     std::ostringstream conv;
-    conv << "set title " << gpString(p->title + ": error against step size") << "\n"
-         << "set xlabel 'dt [s]'\nset ylabel " << gpString("max ‖p − p_{exact}‖ / " + num(p->reference_length) + " m") << "\n"
+    conv << "set title " << gnuplot::quoted(p->title + ": error against step size") << "\n"
+         << "set xlabel 'dt [s]'\nset ylabel " << gnuplot::quoted("max ‖p − p_{exact}‖ / " + num(p->reference_length) + " m") << "\n"
          << "set logscale xy\nset xrange [" << num(dmin / 1.5) << ':' << num(dmax * 1.5) << "]\n"
          << "set yrange [" << num(ylo) << ':' << num(yhi) << "]\nset key outside right top Left reverse width -9 samplen 2.5\nset samples 400\n";
     std::string plot = "plot ";
@@ -551,13 +515,13 @@ std::optional<std::string> writePlots(const ReportInput& in, const std::filesyst
       const std::string& i = in.integrators[ii];
       const auto rows = rowsOf(in, p, i);
       if (rows.empty()) continue;
-      const Style s = styleOf(i, ii);
+      const gnuplot::Style s = gnuplot::integratorStyle(i, ii);
       const Verdict v = judge(*p, i, rows);
       const Fit f = fitOrder(rows);
       std::string title = i + ": p = " + v.observed + " (expected " + v.expected + ")";
       plot += "'accuracy.csv' skip 1 using (" + sel(p, i, true) + " ? $" + std::to_string(kDt) + " : NaN):($" +
               std::to_string(kErr) + " > 1e-17 ? $" + std::to_string(kErr) + " : 1e-17) with linespoints lw 2 dt " + std::to_string(s.dash) + " lc rgb '" +
-              s.color + "' pt " + std::to_string(s.filled) + " ps 1.1 title " + gpString(title) + " noenhanced, \\\n  ";
+              s.color + "' pt " + std::to_string(s.filled) + " ps 1.1 title " + gnuplot::quoted(title) + " noenhanced, \\\n  ";
       if (any_unstable)
         plot += "'accuracy.csv' skip 1 using (" + sel(p, i, false) + " ? $" + std::to_string(kDt) + " : NaN):(" +
                 num(edge) + ") with points lc rgb '" + s.color + "' pt " + std::to_string(s.open) +
@@ -585,8 +549,8 @@ std::optional<std::string> writePlots(const ReportInput& in, const std::filesyst
     if (in.timed && wmax > 0) {
       const double xlo = emin / 4, xhi = emax * 8, xedge = xhi / 1.6;
       std::ostringstream wp;
-      wp << "set title " << gpString(p->title + ": work against precision") << "\n"
-         << "set xlabel " << gpString("error: max ‖p − p_{exact}‖ / " + num(p->reference_length) + " m") << "\n"
+      wp << "set title " << gnuplot::quoted(p->title + ": work against precision") << "\n"
+         << "set xlabel " << gnuplot::quoted("error: max ‖p − p_{exact}‖ / " + num(p->reference_length) + " m") << "\n"
          << "set ylabel 'wall time per run, min of repeats [s]'\nset logscale xy\n"
          << "set xrange [" << num(xlo) << ':' << num(xhi) << "]\nset yrange [" << num(wmin / 3) << ':'
          << num(wmax * 3) << "]\nset key outside right top Left reverse width 0 samplen 2.5\n";
@@ -594,10 +558,10 @@ std::optional<std::string> writePlots(const ReportInput& in, const std::filesyst
       for (size_t ii = 0; ii < in.integrators.size(); ++ii) {
         const std::string& i = in.integrators[ii];
         if (rowsOf(in, p, i).empty()) continue;
-        const Style s = styleOf(i, ii);
+        const gnuplot::Style s = gnuplot::integratorStyle(i, ii);
         wplot += "'accuracy.csv' skip 1 using (" + sel(p, i, true) + " ? ($" + std::to_string(kErr) + " > 1e-17 ? $" +
                  std::to_string(kErr) + " : 1e-17) : NaN):" + std::to_string(kWall) + " with linespoints lw 2 dt " +
-                 std::to_string(s.dash) + " lc rgb '" + s.color + "' pt " + std::to_string(s.filled) + " ps 1.1 title " + gpString(i) + " noenhanced, \\\n  ";
+                 std::to_string(s.dash) + " lc rgb '" + s.color + "' pt " + std::to_string(s.filled) + " ps 1.1 title " + gnuplot::quoted(i) + " noenhanced, \\\n  ";
         // Each marker labelled with its step, 1/30 … 1/7680 (1/dt rounded: the sweep's dt are 1/30 · 2^-k).
         wplot += "'accuracy.csv' skip 1 using (" + sel(p, i, true) + " ? ($" + std::to_string(kErr) + " > 1e-17 ? $" +
                  std::to_string(kErr) + " : 1e-17) : NaN):" + std::to_string(kWall) + ":(sprintf('1/%.0f', 1/$" +
@@ -622,7 +586,7 @@ std::optional<std::string> writePlots(const ReportInput& in, const std::filesyst
         if (l.problem == p) runs.push_back(&l);
       if (!runs.empty()) {
         std::ostringstream en;
-        en << "set title " << gpString(p->title + ": energy error over " + num(*p->long_run) + " s at dt = 1/60 s") << "\n"
+        en << "set title " << gnuplot::quoted(p->title + ": energy error over " + num(*p->long_run) + " s at dt = 1/60 s") << "\n"
            << "set xlabel 't [s]'\nset ylabel '|E/E_0 − 1| (gain solid, loss dotted)'\nunset logscale\nset logscale y\nset format x '%g'\n"
            << "set autoscale xy\nset xrange [0:" << num(*p->long_run) << "]\nset yrange [1e-16<*:*]\nset key inside bottom right Left reverse width 0\n";
         std::string eplot = "plot ";
@@ -630,32 +594,26 @@ std::optional<std::string> writePlots(const ReportInput& in, const std::filesyst
           const std::string& i = runs[ii]->integrator;
           size_t index = 0;
           while (index < in.integrators.size() && in.integrators[index] != i) ++index;
-          const Style s = styleOf(i, index);
+          const gnuplot::Style s = gnuplot::integratorStyle(i, index);
           std::string title = i;
           if (runs[ii]->error.status != "ok") title += " (" + runs[ii]->error.status + " at t = " + num(runs[ii]->error.stopped_at, 5) + " s)";
           // Signed: a gain (E > E0) solid, a loss dotted, both as |E/E0 − 1| on the log axis.
           const std::string column = "$" + std::to_string(ii + 2);
           eplot += "'energy_" + p->name + ".csv' skip 1 using 1:(" + column + " > 1 ? " + column +
-                   " - 1 : NaN) with lines lw 1.4 lc rgb '" + s.color + "' title " + gpString(title + ": gain") + " noenhanced, \\\n  ";
+                   " - 1 : NaN) with lines lw 1.4 lc rgb '" + s.color + "' title " + gnuplot::quoted(title + ": gain") + " noenhanced, \\\n  ";
           eplot += "'energy_" + p->name + ".csv' skip 1 using 1:(" + column + " < 1 ? 1 - " + column +
-                   " : NaN) with lines lw 1.4 dt 3 lc rgb '" + s.color + "' title " + gpString(title + ": loss") + " noenhanced, \\\n  ";
+                   " : NaN) with lines lw 1.4 dt 3 lc rgb '" + s.color + "' title " + gnuplot::quoted(title + ": loss") + " noenhanced, \\\n  ";
         }
         eplot.resize(eplot.size() - 6);
         en << eplot << "\nset format x '10^{%L}'\n";
         terminals("energy_" + p->name, en.str());
       }
     }
-    gp << "reset\nset datafile separator comma\nset encoding utf8\nset grid lw 0.5 lc rgb '#dddddd'\n"
-          "set key font ',9' spacing 1.1\nset format x '10^{%L}'\nset format y '10^{%L}'\n";
+    gp << "reset\n" << gnuplot::kPreamble;
   }
   gp.close();
 
-  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
-    return std::string("gnuplot is not installed (Debian: gnuplot-nox): plots.gp written, pictures not made");
-  const std::string command = "cd '" + dir.string() + "' && gnuplot plots.gp 2> gnuplot.log";
-  if (std::system(command.c_str()) != 0)
-    return "gnuplot failed on " + (dir / "plots.gp").string() + " (see " + (dir / "gnuplot.log").string() + ")";
-  return std::nullopt;
+  return gnuplot::run(dir);
 }
 
 }  // namespace rigidlab::app::accuracy

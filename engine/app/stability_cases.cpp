@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "accuracy_problem.h"
+#include "gnuplot_script.h"
 #include "rigidlab/lua/scene.h"
 #include "rigidlab/world.h"
 #include "stability_cases.h"
@@ -136,7 +137,7 @@ std::string fmt(double x, int digits) {
 }
 
 // S2, S3, S4: where each integrator stops being stable on an undamped spring at 60 Hz.
-CaseResult stiffSpringThresholds(bool) {
+CaseResult stiffSpringThresholds(const Options&) {
   CaseResult r;
   r.name = "stiff_spring_thresholds";
   r.title = "Stiff springs: largest stable k per integrator (S2–S4)";
@@ -193,11 +194,44 @@ CaseResult stiffSpringThresholds(bool) {
   }
   r.tables.push_back(t);
   r.pass = pass;
+
+  // The picture's sweep: the table's k and 25 more, ωh = 0.1 … 100 (8 a decade), every integrator;
+  // max E/E0 over the run (until it stops being finite) and whether it is stable by the same rule.
+  std::vector<double> sweep = ks;
+  for (int i = 0; i <= 24; ++i) {
+    const double omega_h = 0.1 * std::pow(10.0, i / 8.0);
+    sweep.push_back(std::pow(omega_h / kDt, 2));
+  }
+  std::sort(sweep.begin(), sweep.end());
+  DataFile data{"stiff_springs", {"integrator", "k", "omega_h", "stable", "max_energy_ratio", "blowup_reported_step", "gated_k"}, {}};
+  for (const std::string& name : integrators())
+    for (double k : sweep) {
+      const SpringRun s = runOscillator(*find(name), k, 0.0, 0.01, kSteps);
+      const bool gated = std::find(ks.begin(), ks.end(), k) != ks.end();
+      data.rows.push_back({name, fmt(k, 10), fmt(std::sqrt(k) * kDt, 10), yesNo(s.finite && s.watch_step < 0),
+                           fmt(s.max_ratio, 10), s.watch_step < 0 ? "" : std::to_string(s.watch_step), yesNo(gated)});
+    }
+  r.data.push_back(std::move(data));
+  Picture p{.name = "stiff_springs", .data = "stiff_springs",
+              .title = "Undamped spring, m = 1 kg, 10 s at dt = 1/60: largest energy against ωh",
+              .xlabel = "ωh = √(k/m)·dt", .ylabel = "max E/E_0 over the run (above 10^{12}: top edge)"};
+  const double ceiling = 1e12;
+  for (size_t i = 0; i < integrators().size(); ++i) {
+    const std::string name = integrators()[i];
+    const gnuplot::Style style = gnuplot::integratorStyle(name, i);
+    p.series.push_back({name + ": stable", "omega_h", "max_energy_ratio", {{"integrator", name}, {"stable", "yes"}},
+                        style.color, style.filled, true, style.dash, ceiling});
+    p.series.push_back({name + ": blown up", "omega_h", "max_energy_ratio", {{"integrator", name}, {"stable", "no"}},
+                        style.color, style.open, false, 1, ceiling});
+  }
+  p.marks.push_back({"ωh = 2: semi-implicit Euler's limit", 2.0, true});
+  p.marks.push_back({"ωh = 2√2: RK4's limit", 2.0 * std::sqrt(2.0), true, 0, 0, "#60a060"});
+  r.pictures.push_back(std::move(p));
   return r;
 }
 
 // S1: k = 1e6 N/m at 60 Hz must stay finite, with energy never increasing, for the stiff-stable integrator.
-CaseResult stiffSpringImplicit(bool) {
+CaseResult stiffSpringImplicit(const Options&) {
   CaseResult r;
   r.name = "stiff_spring_implicit";
   r.title = "Very stiff spring, k = 1e6 N/m at dt = 1/60 (S1)";
@@ -303,11 +337,11 @@ CaseResult damperCase(bool monotone_rule) {
 }
 }  // namespace
 
-CaseResult damperSign(bool) { return damperCase(false); }
-CaseResult damperMonotone(bool) { return damperCase(true); }
+CaseResult damperSign(const Options&) { return damperCase(false); }
+CaseResult damperMonotone(const Options&) { return damperCase(true); }
 
 // S6: a critically damped, moderately stiff spring: explicit dampers make symplectic Euler blow up.
-CaseResult criticalDamper(bool) {
+CaseResult criticalDamper(const Options&) {
   CaseResult r;
   r.name = "critical_damper";
   r.title = "Critically damped spring at ωh = 0.9 (S6)";
@@ -348,7 +382,7 @@ CaseResult criticalDamper(bool) {
 }
 
 // S9: long runs: energy drift and its trend on an undamped oscillator and a Kepler orbit.
-CaseResult longRuns(bool) {
+CaseResult longRuns(const Options&) {
   CaseResult r;
   // Not shortened for --quick: the runs are cheap (about a second), and a shorter run cannot tell a
   // bounded oscillation of the orbit's energy (period 10 s) from a trend of 1e-6 per s.
@@ -531,7 +565,8 @@ uint64_t stateHash(const World& w) {
 
 }  // namespace
 
-CaseResult frameRate(bool quick) {
+CaseResult frameRate(const Options& options) {
+  const bool quick = options.quick;
   CaseResult r;
   const long steps = quick ? 300 : 600;
   r.name = "frame_rate";

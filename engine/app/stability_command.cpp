@@ -15,6 +15,7 @@
 #include "commands.h"
 #include "report.h"
 #include "stability_cases.h"
+#include "stability_plots.h"
 
 namespace rigidlab::app {
 namespace {
@@ -22,22 +23,38 @@ namespace {
 using namespace stability;
 
 std::string help() {
-  std::string h = R"(usage: rigidlab stability [--out DIR] [--cases A,B,...] [--quick]
+  std::string h = R"(usage: rigidlab stability [--out DIR] [--cases A,B,...] [--quick] [--long] [--no-plots]
 
-Runs the stiff and extreme cases (docs/design/accuracy.md section 4), each with a pass/fail rule, and writes
-DIR/stability.json and DIR/stability.md (default DIR: stability-report) with every case's figures
-and PASS/FAIL. A line per case on standard output.
+Runs the stiff and extreme cases (docs/design/accuracy.md section 4), each with a pass/fail rule, and
+writes to DIR (default stability-report):
+  stability.md, stability.json  every case's rule, figures and PASS/FAIL, the sweeps skipped
+  <sweep>.csv                   one row per run of a case's sweep (mass_ratio.csv, long_chains.csv,
+                                stiff_springs.csv, joint_chain.csv, ...)
+  plots.gp                      gnuplot script that makes the pictures from the CSV files
+                                (<picture>.svg/png, linked from stability.md)
+A line per case on standard output.
 
   --cases LIST  run only these cases (comma-separated)
   --quick       the short versions (fewer steps; the same rules), as ctest runs them
+  --long        also the long sweeps (minutes; listed below): without it they are skipped,
+                and the report and the case's line say which
+  --no-plots    do not run gnuplot (plots.gp is still written)
 
-Exit status: 0 if every case run passes, 1 if one fails, 2 for a usage error.
+Exit status: 0 if every case run passes, 1 if one fails, 2 for a usage error. A case passes on
+what it ran: a skipped sweep is never counted as passed.
 
 cases:
 )";
   for (const Case& c : cases()) {
     char line[160];
     std::snprintf(line, sizeof line, "  %-24s %s\n", c.name.c_str(), c.summary.c_str());
+    h += line;
+  }
+  h += "\nlong sweeps (--long):\n";
+  for (const Case& c : cases()) {
+    if (c.long_sweeps.empty()) continue;
+    char line[200];
+    std::snprintf(line, sizeof line, "  %-24s %s\n", c.name.c_str(), c.long_sweeps.c_str());
     h += line;
   }
   return h;
@@ -50,12 +67,13 @@ std::string mdCell(std::string s) {
 }
 
 void writeJson(const std::filesystem::path& file, const std::vector<CaseResult>& results, const accuracy::BuildInfo& b,
-               bool quick) {
+               const Options& options) {
   std::ofstream out(file);
   if (!out) throw std::runtime_error(file.string() + ": cannot write");
   out << "{\n  \"engine_version\": " << jsonString(b.engine_version) << ",\n  \"git_hash\": " << jsonString(b.git_hash)
       << ",\n  \"build\": " << jsonString(b.build) << ",\n  \"cpu\": " << jsonString(b.cpu)
-      << ",\n  \"quick\": " << (quick ? "true" : "false") << ",\n  \"cases\": [\n";
+      << ",\n  \"quick\": " << (options.quick ? "true" : "false") << ",\n  \"long\": " << (options.long_sweeps ? "true" : "false")
+      << ",\n  \"cases\": [\n";
   for (size_t i = 0; i < results.size(); ++i) {
     const CaseResult& r = results[i];
     out << "    {\"name\": " << jsonString(r.name) << ", \"title\": " << jsonString(r.title)
@@ -69,6 +87,10 @@ void writeJson(const std::filesystem::path& file, const std::vector<CaseResult>&
     }
     out << "},\n     \"notes\": [";
     for (size_t j = 0; j < r.notes.size(); ++j) out << (j ? ", " : "") << jsonString(r.notes[j]);
+    out << "],\n     \"skipped\": [";
+    for (size_t j = 0; j < r.skipped.size(); ++j) out << (j ? ", " : "") << jsonString(r.skipped[j]);
+    out << "],\n     \"data\": [";
+    for (size_t j = 0; j < r.data.size(); ++j) out << (j ? ", " : "") << jsonString(r.data[j].name + ".csv");
     out << "],\n     \"tables\": [";
     for (size_t j = 0; j < r.tables.size(); ++j) {
       const Table& t = r.tables[j];
@@ -86,15 +108,35 @@ void writeJson(const std::filesystem::path& file, const std::vector<CaseResult>&
   out << "  ]\n}\n";
 }
 
+// "PASS", "**FAIL**", and what was not run.
+std::string verdict(const CaseResult& r) {
+  std::string v = r.pass ? "PASS" : "**FAIL**";
+  if (!r.skipped.empty()) v += " on what ran (" + std::to_string(r.skipped.size()) + " skipped)";
+  return v;
+}
+
 void writeMarkdown(const std::filesystem::path& file, const std::vector<CaseResult>& results,
-                   const accuracy::BuildInfo& b, bool quick, double seconds) {
+                   const accuracy::BuildInfo& b, const Options& options, double seconds) {
   std::ofstream md(file);
   if (!md) throw std::runtime_error(file.string() + ": cannot write");
   int passed = 0;
-  for (const CaseResult& r : results) passed += r.pass ? 1 : 0;
-  md << "# rigidlab stability report" << (quick ? " (quick versions)" : "") << "\n\n";
+  std::string partial;
+  for (const CaseResult& r : results) {
+    passed += r.pass ? 1 : 0;
+    if (!r.skipped.empty()) partial += (partial.empty() ? "" : ",") + r.name;
+  }
+  md << "# rigidlab stability report" << (options.quick ? " (quick versions)" : "") << "\n\n";
   md << "engine " << b.engine_version << ", git " << b.git_hash << ", " << b.build << ", " << b.cpu << "; "
-     << passed << " of " << results.size() << " cases pass; " << std::lround(seconds) << " s.\n\n";
+     << passed << " of " << results.size() << " cases pass; " << std::lround(seconds) << " s"
+     << (options.long_sweeps ? "; with the long sweeps (--long)" : "") << ".\n\n";
+  if (!partial.empty()) {
+    md << "**Skipped:** the long sweeps of " << partial << " did not run (they take minutes), and their case passes or fails "
+       << "on what ran only. Run them with `rigidlab stability --long --cases " << partial << (options.quick ? " --quick" : "")
+       << "`:\n\n";
+    for (const CaseResult& r : results)
+      for (const std::string& s : r.skipped) md << "- " << r.name << ": " << s << "\n";
+    md << "\n";
+  }
   md << "| case | result | key figures |\n|---|---|---|\n";
   for (const CaseResult& r : results) {
     std::string figures;
@@ -102,13 +144,16 @@ void writeMarkdown(const std::filesystem::path& file, const std::vector<CaseResu
       figures += (i ? "; " : "") + r.figures[i].key + " = " +
                  (r.figures[i].text.empty() || std::isfinite(r.figures[i].value) ? fmt(r.figures[i].value) : r.figures[i].text) +
                  (r.figures[i].unit.empty() ? "" : " " + r.figures[i].unit);
-    md << "| [" << r.name << "](#" << r.name << ") | " << (r.pass ? "PASS" : "**FAIL**") << " | " << mdCell(figures) << " |\n";
+    md << "| [" << r.name << "](#" << r.name << ") | " << verdict(r) << " | " << mdCell(figures) << " |\n";
   }
   for (const CaseResult& r : results) {
-    md << "\n## " << r.name << "\n\n**" << r.title << "** — " << (r.pass ? "PASS" : "**FAIL**") << " ("
+    md << "\n## " << r.name << "\n\n**" << r.title << "** — " << verdict(r) << " ("
        << fmt(r.seconds, 3) << " s)\n\nRule: " << r.rule << ".\n\n";
+    for (const std::string& s : r.skipped)
+      md << "- skipped: " << s << "; run it with `rigidlab stability --long --cases " << r.name << (options.quick ? " --quick" : "")
+         << "`\n";
     for (const std::string& n : r.notes) md << "- " << n << "\n";
-    if (!r.notes.empty()) md << "\n";
+    if (!r.notes.empty() || !r.skipped.empty()) md << "\n";
     if (!r.figures.empty()) {
       md << "| figure | value |\n|---|---|\n";
       for (const Figure& f : r.figures)
@@ -130,19 +175,25 @@ void writeMarkdown(const std::filesystem::path& file, const std::vector<CaseResu
       }
       md << "\n";
     }
+    for (const Picture& p : r.pictures)
+      for (const DataFile& d : r.data)
+        if (d.name == p.data && !d.rows.empty()) md << "![" << p.title << "](" << p.name << ".svg)\n\n";
+    for (const DataFile& d : r.data) md << "Data: [" << d.name << ".csv](" << d.name << ".csv)\n\n";
   }
 }
 
 }  // namespace
 
 int stabilityCommand(const std::vector<std::string>& argv) {
-  const Args args("stability", argv, {"out", "cases"}, {"quick"});
+  const Args args("stability", argv, {"out", "cases"}, {"quick", "long", "no-plots"});
   if (args.help()) {
     std::fputs(help().c_str(), stdout);
     return kExitOk;
   }
   if (!args.positional().empty()) throw UsageError("stability: unexpected argument '" + args.positional()[0] + "'");
-  const bool quick = args.flag("quick");
+  Options options;
+  options.quick = args.flag("quick");
+  options.long_sweeps = args.flag("long");
   const std::filesystem::path out = args.value("out").value_or("stability-report");
   std::vector<const Case*> selected;
   if (const auto list = args.value("cases")) {
@@ -176,7 +227,7 @@ int stabilityCommand(const std::vector<std::string>& argv) {
     const auto t0 = std::chrono::steady_clock::now();
     CaseResult r;
     try {
-      r = c.run(quick);
+      r = c.run(options);
     } catch (const std::exception& e) {
       r.name = c.name;
       r.title = c.summary;
@@ -188,6 +239,7 @@ int stabilityCommand(const std::vector<std::string>& argv) {
     if (tty) std::fprintf(stderr, "\r%70s\r", "");
     std::printf("%-24s %s  %6.2f s", r.name.c_str(), r.pass ? "PASS" : "FAIL", r.seconds);
     if (!r.pass && !r.notes.empty()) std::printf("  %s", r.notes.front().c_str());
+    for (size_t k = 0; k < r.skipped.size(); ++k) std::printf("%s%s", k ? "; " : "  skipped: ", r.skipped[k].c_str());
     std::printf("\n");
     std::fflush(stdout);
     results.push_back(std::move(r));
@@ -195,16 +247,22 @@ int stabilityCommand(const std::vector<std::string>& argv) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const accuracy::BuildInfo build = accuracy::buildInfo();
   try {
-    writeJson(out / "stability.json", results, build, quick);
-    writeMarkdown(out / "stability.md", results, build, quick, seconds);
+    writeData(results, out);
+    writeJson(out / "stability.json", results, build, options);
+    writeMarkdown(out / "stability.md", results, build, options, seconds);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "stability: %s\n", e.what());
     return kExitSceneError;
   }
+  if (const auto problem = writePlots(results, out, !args.flag("no-plots")))
+    std::fprintf(stderr, "stability: %s\n", problem->c_str());
   int failed = 0;
   for (const CaseResult& r : results) failed += r.pass ? 0 : 1;
-  std::printf("%zu of %zu cases pass; report in %s (stability.md, stability.json)\n", results.size() - failed,
-              results.size(), out.string().c_str());
+  size_t skipped = 0;
+  for (const CaseResult& r : results) skipped += r.skipped.size();
+  std::printf("%zu of %zu cases pass; report in %s (stability.md, stability.json, CSV files, pictures)\n",
+              results.size() - failed, results.size(), out.string().c_str());
+  if (skipped) std::printf("long sweeps skipped (not counted as passed): %zu; run them with --long\n", skipped);
   return failed ? kExitSceneError : kExitOk;
 }
 

@@ -129,7 +129,7 @@ RestFigures runRest(World& w, const std::vector<BodyId>& bodies, BodyId top, dou
 }  // namespace
 
 // S7: a light box under a heavy one on static ground.
-CaseResult massRatio(bool) {
+CaseResult massRatio(const Options&) {
   CaseResult r;
   r.name = "mass_ratio";
   r.title = "Mass ratios: a 1 kg box under 1 kg to 1e6 kg (S7)";
@@ -143,6 +143,8 @@ CaseResult massRatio(bool) {
   t.header = {"setting", "ratio", "max penetration [m]", "final penetration [m]", "sinking after 2 s [m]", "sink over 5 s [m]",
               "max |v| after 2 s [m/s]", "max |angle| [rad]", "holds"};
   bool pass = false, extreme_pass = true;
+  DataFile data{"mass_ratio", {"setting", "ratio", "max_penetration", "final_penetration", "sinking_after_2s", "sink",
+                               "max_speed_after_2s", "max_angle", "holds"}, {}};
   for (const Setting& s : solverSettings()) {
     for (double ratio : {1.0, 10.0, 100.0, 1000.0, 1e4, 1e5, 1e6}) {
       World w(s.def);
@@ -154,6 +156,9 @@ CaseResult massRatio(bool) {
                          f.max_angle < 1e-3;
       t.rows.push_back({s.name, fmt(ratio) + ":1", fmt(f.max_pen), fmt(f.final_pen), fmt(f.top_drop_settled), fmt(f.top_sink),
                         fmt(f.speed_after_settle), fmt(f.max_angle), f.finite ? yesNo(holds) : "no (non-finite)"});
+      data.rows.push_back({s.name, fmt(ratio, 10), fmt(f.max_pen, 10), fmt(f.final_pen, 10), fmt(f.top_drop_settled, 10),
+                           fmt(f.top_sink, 10), fmt(f.speed_after_settle, 10), fmt(f.max_angle, 10),
+                           f.finite ? yesNo(holds) : "no (non-finite)"});
       if (s.name == "default") {
         const std::string key = "ratio_" + fmt(ratio);
         r.figures.push_back({key + "_max_penetration", f.max_pen, "m", ""});
@@ -177,6 +182,18 @@ CaseResult massRatio(bool) {
   }
   r.tables.push_back(t);
   r.pass = pass && extreme_pass;
+
+  Picture p{.name = "mass_ratio", .data = "mass_ratio",
+              .title = "A 1 kg box under a heavier one on the ground: sink over 5 s at dt = 1/60",
+              .xlabel = "mass ratio (upper box : 1 kg)", .ylabel = "sink of the upper box [m]", .key = "inside left top"};
+  static const char* const colors[] = {"#1f77b4", "#2ca02c", "#9467bd", "#d62728", "#ff7f0e", "#8c564b"};
+  const std::vector<Setting> settings = solverSettings();
+  for (size_t i = 0; i < settings.size(); ++i)
+    p.series.push_back({settings[i].name, "ratio", "sink", {{"setting", settings[i].name}}, colors[i % std::size(colors)],
+                        i == 0 ? 7 : 6 + 2 * static_cast<int>(i), true, i == 0 ? 1 : 2});
+  p.marks.push_back({"gate: sink ≤ 1 cm from 1000:1 to 1e6:1 (default settings)", 0.01, false, 1000.0, 1e6, "#d62728"});
+  r.data.push_back(std::move(data));
+  r.pictures.push_back(std::move(p));
   return r;
 }
 
@@ -225,7 +242,8 @@ CaseResult standing(const std::string& name, const std::string& title, const std
 
 }  // namespace
 
-CaseResult tallStack(bool quick) {
+CaseResult tallStack(const Options& options) {
+  const bool quick = options.quick;
   return standing("tall_stack", "Tall stack of 20 boxes", "20 boxes of 1×1 m, 1 kg each, stacked on static ground", quick,
                   [](World& w) {
                     std::vector<BodyId> b;
@@ -234,7 +252,8 @@ CaseResult tallStack(bool quick) {
                   });
 }
 
-CaseResult pyramid(bool quick) {
+CaseResult pyramid(const Options& options) {
+  const bool quick = options.quick;
   return standing("pyramid", "Pyramid of base 20 (210 boxes)", "a pyramid of 210 boxes of 1×1 m (base 20) on static ground",
                   quick, [](World& w) {
                     std::vector<BodyId> b;
@@ -247,7 +266,7 @@ CaseResult pyramid(bool quick) {
 }
 
 // S8: a small fast disc against a thin static wall.
-CaseResult fastBodies(bool) {
+CaseResult fastBodies(const Options&) {
   CaseResult r;
   r.name = "fast_bodies";
   r.title = "Fast bodies against a thin static wall (S8)";
@@ -292,7 +311,7 @@ CaseResult fastBodies(bool) {
 }
 
 // Boxes spawned overlapping by half must separate without being launched.
-CaseResult deepOverlap(bool) {
+CaseResult deepOverlap(const Options&) {
   CaseResult r;
   r.name = "deep_overlap";
   r.title = "Deep overlap: boxes spawned half inside each other";
@@ -350,7 +369,8 @@ CaseResult deepOverlap(bool) {
 }
 
 // Small and large bodies, a density ratio of 1e6, and a scene far from the origin.
-CaseResult scale(bool quick) {
+CaseResult scale(const Options& options) {
+  const bool quick = options.quick;
   CaseResult r;
   r.name = "scale";
   r.title = "Scale: 1 cm and 1 km bodies, density ratio 1e6, 1e5 m from the origin (S10)";
@@ -448,23 +468,24 @@ CaseResult scale(bool quick) {
 
 const std::vector<Case>& cases() {
   static const std::vector<Case> list = {
-      {"stiff_spring_thresholds", "largest stable k per integrator; textbook thresholds (S2–S4)", stiffSpringThresholds},
-      {"stiff_spring_implicit", "k = 1e6 N/m at 60 Hz stays finite, energy never increasing (S1)", stiffSpringImplicit},
-      {"damper_sign", "dampers never flip a velocity's sign, whatever b·dt/m (S5)", damperSign},
-      {"damper_monotone", "dampers never make a speed grow, whatever b·dt/m (S5)", damperMonotone},
-      {"critical_damper", "critically damped spring at ωh = 0.9 (S6)", criticalDamper},
-      {"mass_ratio", "1 kg box under 1 kg to 1e6 kg (S7)", massRatio},
-      {"tall_stack", "20 boxes standing: drift and jitter", tallStack},
-      {"pyramid", "pyramid of base 20 standing: drift and jitter", pyramid},
-      {"fast_bodies", "0.1 m disc at 100 and 500 m/s against a 0.1 m wall (S8)", fastBodies},
-      {"deep_overlap", "boxes spawned half-overlapping separate without flying apart", deepOverlap},
-      {"long_runs", "spring and Kepler orbit for 1e5 steps: energy drift and trend (S9)", longRuns},
-      {"scale", "1 cm and 1 km bodies, density ratio 1e6, far from the origin (S10)", scale},
-      {"frame_rate", "frame times 1/30, 1/60, 1/144 through the fixed-step loop (S11)", frameRate},
-      {"joint_chain", "30 links of 0.5 m, 1 kg released horizontally: stretch, pin gaps", jointChain},
-      {"joint_heavy_load", "100 kg box on 10 links of 1 kg (100:1): stretch", jointHeavyLoad},
-      {"joint_whirl", "20-link chain whirled at 6 rad/s: stretch, pin gaps, energy", jointWhirl},
-      {"joint_long_chains", "chains of 100, 1000, 10 000 links released horizontally: pin gaps", jointLongChains},
+      {"stiff_spring_thresholds", "largest stable k per integrator; textbook thresholds (S2–S4)", "", stiffSpringThresholds},
+      {"stiff_spring_implicit", "k = 1e6 N/m at 60 Hz stays finite, energy never increasing (S1)", "", stiffSpringImplicit},
+      {"damper_sign", "dampers never flip a velocity's sign, whatever b·dt/m (S5)", "", damperSign},
+      {"damper_monotone", "dampers never make a speed grow, whatever b·dt/m (S5)", "", damperMonotone},
+      {"critical_damper", "critically damped spring at ωh = 0.9 (S6)", "", criticalDamper},
+      {"mass_ratio", "1 kg box under 1 kg to 1e6 kg (S7)", "", massRatio},
+      {"tall_stack", "20 boxes standing: drift and jitter", "", tallStack},
+      {"pyramid", "pyramid of base 20 standing: drift and jitter", "", pyramid},
+      {"fast_bodies", "0.1 m disc at 100 and 500 m/s against a 0.1 m wall (S8)", "", fastBodies},
+      {"deep_overlap", "boxes spawned half-overlapping separate without flying apart", "", deepOverlap},
+      {"long_runs", "spring and Kepler orbit for 1e5 steps: energy drift and trend (S9)", "", longRuns},
+      {"scale", "1 cm and 1 km bodies, density ratio 1e6, far from the origin (S10)", "", scale},
+      {"frame_rate", "frame times 1/30, 1/60, 1/144 through the fixed-step loop (S11)", "", frameRate},
+      {"joint_chain", "30 links of 0.5 m, 1 kg released horizontally: stretch, pin gaps", "", jointChain},
+      {"joint_heavy_load", "100 kg box on 10 links of 1 kg (100:1): stretch", "", jointHeavyLoad},
+      {"joint_whirl", "20-link chain whirled at 6 rad/s: stretch, pin gaps, energy", "", jointWhirl},
+      {"joint_long_chains", "chains of 100 to 10 000 links released horizontally: pin gaps",
+       "3000 and 10 000 links over 5 s (quick: 10 000 over 0.25 s); minutes", jointLongChains},
   };
   return list;
 }
