@@ -172,6 +172,11 @@ void beginEnergyWatch(WorldImpl& w) {
 void endEnergyWatch(WorldImpl& w) {
   EnergyWatch& e = w.energy;
   if (e.reported || !e.started) return;
+  // The bodies contacts may push: those in a contact now or at the end of an earlier step.
+  if (!w.contacts.empty()) {
+    e.touched.resize(w.bodies.size(), 0);
+    for (const Contact& c : w.contacts) e.touched[c.a] = e.touched[c.b] = 1;
+  }
   // One pass: kinetic and gravity's energy, what contacts may give back (energy_watch.h), and the
   // body with the most kinetic energy (the one an incident names).
   const double push = w.def.contact_push_speed;
@@ -184,7 +189,8 @@ void endEnergyWatch(WorldImpl& w) {
     const double k = kineticOf(b);
     kinetic += k;
     gravity -= b.mass * g.dot(b.center);
-    give_back += b.mass * (0.5 * push * push + g.norm() * b.max_extent);
+    const bool pushed = (i < e.touched.size() && e.touched[i]) || (i < w.body_joints.size() && !w.body_joints[i].empty());
+    if (pushed) give_back += b.mass * (0.5 * push * push + g.norm() * b.max_extent);
     if (k > most) most = k, named = i;
   }
   const double potential = gravity + (w.forces.empty() ? 0.0 : w.forcePotentialEnergy());
