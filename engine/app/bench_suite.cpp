@@ -382,20 +382,13 @@ BenchWorld junkyard() {
   BenchWorld b = emptyBench(true);
   World& w = *b.world;
   addBoxContainer(w, addBody(w, BodyType::Static, Vec2::Zero()), 80, 50);
-  // v3's pentagon: 5 points of the circle of radius 0.25 at the angles k φ, φ = π(√5 − 1) (the
-  // golden angle's supplement; a Fibonacci spiral), taken in angular order for makePolygon. v3
+  // v3's pentagon: 5 points of the circle of radius 0.25 at the angles k φ, φ = π(√5 − 1) (a
+  // Fibonacci spiral's step), taken in angular order (k = 0, 2, 4, 1, 3) for makePolygon. v3
   // computes the cosines and sines with its own approximation (b2ComputeCosSin, about 1e-3 rad
-  // off); here they are exact.
+  // off); here they are portableCos and portableSin (a Lua scene's math.cos and math.sin).
   const double radius = 0.25, phi = kPi * (std::sqrt(5.0) - 1.0);
-  std::vector<std::pair<double, Vec2>> points;
-  for (int k = 0; k < 5; ++k) {
-    double s, c;
-    portableSinCos(phi * k, s, c);
-    points.push_back({std::fmod(phi * k, 2.0 * kPi), Vec2(radius * c, radius * s)});
-  }
-  std::sort(points.begin(), points.end(), [](const auto& a, const auto& c) { return a.first < c.first; });
   std::vector<Vec2> pentagon;
-  for (const auto& p : points) pentagon.push_back(p.second);
+  for (int k : {0, 2, 4, 1, 3}) pentagon.push_back(Vec2(radius * portableCos(phi * k), radius * portableSin(phi * k)));
   const Shape shape = makePolygon(pentagon);
   const int columns = 200, rows = 40;
   double side = -0.1;  // every other body (counted across the columns) 0.1 m left, the others right
@@ -426,11 +419,7 @@ BenchWorld washer() {
   d.velocity = Vec2(0.001, -0.002);
   const BodyId drum = w.createBody(d);
   const double r0 = 14.0, r1 = 16.0, r2 = 18.0, step = kPi / 18.0;
-  const auto unit = [](double angle) {
-    double s, c;
-    portableSinCos(angle, s, c);
-    return Vec2(c, s);
-  };
+  const auto unit = [](double angle) { return Vec2(portableCos(angle), portableSin(angle)); };
   for (int i = 0; i < 36; ++i) {
     const double t1 = i * step, t2 = (i + 1) * step;
     const Vec2 a1 = unit(t1 - 0.1 * step), a2 = unit(t2 + 0.1 * step);
