@@ -382,8 +382,8 @@ BenchWorld junkyard() {
   BenchWorld b = emptyBench(true);
   World& w = *b.world;
   addBoxContainer(w, addBody(w, BodyType::Static, Vec2::Zero()), 80, 50);
-  // v3's pentagon: 5 points of the circle of radius 0.25 at the angles k φ, φ = π(√5 − 1) (a
-  // Fibonacci spiral's step), taken in angular order (k = 0, 2, 4, 1, 3) for makePolygon. v3
+  // v3's pentagon: 5 points of the circle of radius 0.25 at the angles k φ, φ = π(√5 − 1) (2π less
+  // the golden angle: a Fibonacci spiral's step), taken in angular order (k = 0, 2, 4, 1, 3) for makePolygon. v3
   // computes the cosines and sines with its own approximation (b2ComputeCosSin, about 1e-3 rad
   // off); here they are portableCos and portableSin (a Lua scene's math.cos and math.sin).
   const double radius = 0.25, phi = kPi * (std::sqrt(5.0) - 1.0);
