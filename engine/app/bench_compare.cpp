@@ -87,6 +87,7 @@ std::string quality(const JsonValue& r) {
   add("gap", "max_joint_gap_m", "%.4f");
   add("drop", "mean_drop_m", "%.3f");
   add("top", "top_height_loss_m", "%.3f");
+  add("escaped", "escaped", "%.0f");  // compounds, junkyard, washer: bodies out of the container
   return out;
 }
 

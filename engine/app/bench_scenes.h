@@ -71,13 +71,14 @@ struct BenchScene {
   std::function<BenchWorld()> build;
   // Called after every step (its time is not the step's): a scene that measures something other
   // than the step (queries, event delivery) records it here.
-  std::function<void(BenchWorld&, int step, BenchSamples&)> probe = nullptr;
+  using Probe = std::function<void(BenchWorld&, int step, BenchSamples&)>;
+  Probe probe = nullptr;
 };
 
 const std::vector<BenchScene>& benchScenes();
 
 // Box2D v3's benchmark suite (bench_suite.cpp): large_pyramid, many_pyramids, joint_grid,
-// ragdolls, smash, spinner, tumbler.
+// ragdolls, smash, spinner, tumbler, compounds, junkyard, washer.
 void addSuiteScenes(std::vector<BenchScene>& scenes);
 bool isSuiteScene(const std::string& kind);
 // The suite's ragdolls (Box2D v3's rain) keeping `columns` columns of ragdolls before the oldest is

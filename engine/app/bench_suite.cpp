@@ -339,6 +339,128 @@ BenchWorld tumbler() {
   return b;
 }
 
+// The static container that v3's compounds and junkyard share: a floor of boxes 1.1 m × 1 m, 1 m
+// apart along y = 0 (top at 0.5, each overlapping its neighbours by 10 cm) from x = −half to half,
+// and at x = ±half a wall of `wall` boxes 1 m × 1.1 m stacked from y = 1.
+void addBoxContainer(World& w, BodyId ground, int half, int wall) {
+  for (int i = 0; i <= 2 * half; ++i) addShape(w, ground, makeBox(1.1, 1.0, Vec2(i - half, 0.0)));
+  for (int side : {-1, 1})
+    for (int i = 0; i < wall; ++i) addShape(w, ground, makeBox(1.0, 1.1, Vec2(side * half, i + 1.0)));
+}
+
+// Box2D v3's compounds (its samples' barrel of compound shapes): 20 columns × 150 rows of bodies of
+// two overlapping triangles each (density 1, friction 0.5; 3000 bodies, 6000 shapes) fall into an
+// 80 m container with 100 m walls; a 1600 m segment 80 m below catches what falls out.
+BenchWorld compounds() {
+  BenchWorld b = emptyBench(true);
+  World& w = *b.world;
+  const BodyId ground = addBody(w, BodyType::Static, Vec2::Zero());
+  addBoxContainer(w, ground, 40, 100);
+  addShape(w, ground, makeSegment(Vec2(-800.0, -80.0), Vec2(800.0, -80.0)));
+  const Vec2 left[3] = {{-1.0, 0.0}, {0.5, 1.0}, {0.0, 2.0}};
+  const Vec2 right[3] = {{1.0, 0.0}, {-0.5, 1.0}, {0.0, 2.0}};
+  const int columns = 20, rows = 150;
+  // v3's sample's layout: columns 2 m apart centred on x = 0, rows 2.25 m apart from y = 5.575,
+  // every other body (counted across the columns) 0.25 m to the right, the others to the left.
+  const double shift = 2.0, extra_y = 0.25, center_x = shift * columns / 2.0 - 1.0, center_y = 1.15 / 2.0, y_start = 5.0;
+  double side = 0.25;
+  for (int i = 0; i < columns; ++i) {
+    for (int j = 0; j < rows; ++j, side = -side) {
+      const BodyId body = addBody(w, BodyType::Dynamic, Vec2(i * shift - center_x + side, j * (shift + extra_y) + center_y + y_start));
+      addShape(w, body, makePolygon(left), 1.0, 0.5);
+      addShape(w, body, makePolygon(right), 1.0, 0.5);
+    }
+  }
+  return b;
+}
+
+// Box2D v3's junkyard: 200 columns × 40 rows of pentagons (radius 0.25 m, 8000 bodies) fall into a
+// 160 m container with 50 m walls, and a kinematic pusher (a 4 × 8 m box standing on the floor)
+// sweeps them: before each step k its velocity is set to reach x = 60 sin(0.2 k dt) in one step
+// (b2Body_SetTargetTransform; World::setTarget).
+BenchWorld junkyard() {
+  BenchWorld b = emptyBench(true);
+  World& w = *b.world;
+  addBoxContainer(w, addBody(w, BodyType::Static, Vec2::Zero()), 80, 50);
+  // v3's pentagon: 5 points of the circle of radius 0.25 at the angles k φ, φ = π(√5 − 1) (2π less
+  // the golden angle: a Fibonacci spiral's step), taken in angular order (k = 0, 2, 4, 1, 3) for makePolygon. v3
+  // computes the cosines and sines with its own approximation (b2ComputeCosSin, about 1e-3 rad
+  // off); here they are portableCos and portableSin (a Lua scene's math.cos and math.sin).
+  const double radius = 0.25, phi = kPi * (std::sqrt(5.0) - 1.0);
+  std::vector<Vec2> pentagon;
+  for (int k : {0, 2, 4, 1, 3}) pentagon.push_back(Vec2(radius * portableCos(phi * k), radius * portableSin(phi * k)));
+  const Shape shape = makePolygon(pentagon);
+  const int columns = 200, rows = 40;
+  double side = -0.1;  // every other body (counted across the columns) 0.1 m left, the others right
+  for (int i = 0; i < columns; ++i)
+    for (int j = 0; j < rows; ++j, side = -side)
+      addShape(w, addBody(w, BodyType::Dynamic, Vec2(1.5 * (2.0 * i - columns) * radius + side, 4.0 * j * radius + 15.0)), shape);
+  const BodyId pusher = addBody(w, BodyType::Kinematic, Vec2::Zero());
+  addShape(w, pusher, makeBox(4.0, 8.0, Vec2(0.0, 4.0)));
+  b.before_step = [pusher](World& world, int step) {
+    const double dt = 1.0 / 60.0;
+    world.setTarget(pusher, Vec2(60.0 * portableSin(0.2 * dt * step), 0.0), 0.0, dt);
+  };
+  return b;
+}
+
+// Box2D v3's washer: a kinematic drum turning at 25°/s about (0, 10) (and drifting at
+// (0.001, −0.002) m/s, as v3 sets it) holds 90 × 90 boxes of 0.2 m (8100, hit events on). The drum
+// is a ring from 16 to 18 m of 36 quadrilaterals, each 10° wide plus 1° over each neighbour, and 4
+// fins from 14 to 16 m, 10° wide, every 90°: 40 shapes.
+BenchWorld washer() {
+  BenchWorld b = emptyBench(true);
+  World& w = *b.world;
+  addBody(w, BodyType::Static, Vec2::Zero());  // v3 makes a ground body without shapes
+  BodyDef d;
+  d.type = BodyType::Kinematic;
+  d.position = Vec2(0.0, 10.0);
+  d.angular_velocity = kPi / 180.0 * 25.0;
+  d.velocity = Vec2(0.001, -0.002);
+  const BodyId drum = w.createBody(d);
+  const double r0 = 14.0, r1 = 16.0, r2 = 18.0, step = kPi / 18.0;
+  const auto unit = [](double angle) { return Vec2(portableCos(angle), portableSin(angle)); };
+  for (int i = 0; i < 36; ++i) {
+    const double t1 = i * step, t2 = (i + 1) * step;
+    const Vec2 a1 = unit(t1 - 0.1 * step), a2 = unit(t2 + 0.1 * step);
+    const Vec2 quad[4] = {r1 * a1, r2 * a1, r2 * a2, r1 * a2};  // counter-clockwise
+    addShape(w, drum, makePolygon(quad));
+    if (i % 9 == 0) {
+      const Vec2 u1 = unit(t1), u2 = unit(t2);
+      const Vec2 fin[4] = {r0 * u1, r1 * u1, r1 * u2, r0 * u2};
+      addShape(w, drum, makePolygon(fin));
+    }
+  }
+  const int grid = 90;
+  const double a = 0.1;
+  ShapeDef box;
+  box.shape = makeBox(2.0 * a, 2.0 * a);
+  box.hit_events = true;  // as v3 sets them (its default threshold, 1 m/s, is rigidlab's hit_speed)
+  double y = -1.1 * a * grid + 10.0;
+  for (int i = 0; i < grid; ++i, y += 2.1 * a) {
+    double x = -1.1 * a * grid;
+    for (int j = 0; j < grid; ++j, x += 2.1 * a) w.createShape(addBody(w, BodyType::Dynamic, Vec2(x, y)), box);
+  }
+  return b;
+}
+
+// Bodies out of the scene's container at the end (the figure `escaped`): for compounds and junkyard
+// below the floor's middle (y < 0) or beyond a wall's middle; for the washer farther than 16 m
+// (the ring's inner face) from the drum's axis at (0, 10). Computed after every step, kept the last.
+BenchScene::Probe escapedProbe(double half_width, double drum_radius) {
+  return [half_width, drum_radius](BenchWorld& bw, int, BenchSamples& out) {
+    int escaped = 0;
+    World& w = bw.get();
+    for (BodyId id : w.bodyIds()) {
+      const Body& body = w.body(id);
+      if (!body.isDynamic()) continue;
+      const Vec2 p = body.position();
+      escaped += drum_radius > 0 ? (p - Vec2(0.0, 10.0)).norm() > drum_radius : p.y() < 0.0 || std::abs(p.x()) > half_width;
+    }
+    out.figures["escaped"] = escaped;
+  };
+}
+
 }  // namespace
 
 BenchWorld suiteRagdolls(int columns) { return ragdollRain(columns); }
@@ -355,10 +477,17 @@ void addSuiteScenes(std::vector<BenchScene>& scenes) {
   add("smash", 9601, "Box2D v3 suite: a heavy box into 9600 sleeping boxes, no gravity, 300 steps", 300, smash);
   add("spinner", 6077, "Box2D v3 suite: 6076 bodies in a ring stirred by a motor paddle, 500 steps", 500, spinner);
   add("tumbler", 2026, "Box2D v3 suite: 2025 boxes in a turning drum, 750 steps", 750, tumbler);
+  add("compounds", 3000, "Box2D v3 suite: 3000 bodies of two triangles fall into a container, 500 steps", 500, compounds);
+  scenes.back().probe = escapedProbe(40.0, 0.0);
+  add("junkyard", 8001, "Box2D v3 suite: 8000 pentagons swept by a kinematic pusher, 800 steps", 800, junkyard);
+  scenes.back().probe = escapedProbe(80.0, 0.0);
+  add("washer", 8101, "Box2D v3 suite: 8100 small boxes in a kinematic drum turning at 25 deg/s, 500 steps", 500, washer);
+  scenes.back().probe = escapedProbe(0.0, 16.0);
 }
 
 bool isSuiteScene(const std::string& kind) {
-  for (const char* k : {"large_pyramid", "many_pyramids", "joint_grid", "ragdolls", "smash", "spinner", "tumbler"})
+  for (const char* k : {"large_pyramid", "many_pyramids", "joint_grid", "ragdolls", "smash", "spinner", "tumbler",
+                        "compounds", "junkyard", "washer"})
     if (kind == k) return true;
   return false;
 }

@@ -79,7 +79,7 @@ static RunResult runOnce(const Scene& sc, const Options& o) {
 }
 
 // ------------------------------------------------------ Box2D v3's suite --
-// The seven scenes of Box2D v3's benchmark suite, built as rigidlab's engine/app/bench_suite.cpp
+// The ten scenes of Box2D v3's benchmark suite, built as rigidlab's engine/app/bench_suite.cpp
 // builds them (the same bodies, shapes, materials, filters, joints and step counts) in Box2D
 // 2.4.1's vocabulary; each place where 2.4.1 has no exact equivalent says what stands in for it.
 
@@ -481,7 +481,109 @@ SuiteWorld tumbler(const Options& o) {
     return s;
 }
 
+// The static container of compounds and junkyard: a floor of 1.1 x 1 m boxes 1 m apart along y = 0
+// from x = -half to half, and at x = +-half a wall of `wall` 1 x 1.1 m boxes stacked from y = 1.
+void addBoxContainer(b2Body* ground, int half, int wall) {
+    for (int i = 0; i <= 2 * half; ++i) addFixture(ground, boxShape(1.1f, 1.0f, b2Vec2((float)(i - half), 0.0f)));
+    for (int side : {-1, 1})
+        for (int i = 0; i < wall; ++i) addFixture(ground, boxShape(1.0f, 1.1f, b2Vec2((float)(side * half), i + 1.0f)));
+}
+
+// Box2D v3's compounds: 20 x 150 bodies of two overlapping triangles (density 1, friction 0.5)
+// fall into an 80 m container with 100 m walls; a 1600 m segment 80 m below catches what falls out.
+SuiteWorld compounds(const Options& o) {
+    SuiteWorld s = emptySuiteWorld(true, o);
+    b2Body* ground = s.addBody(b2_staticBody, b2Vec2(0.0f, 0.0f));
+    addBoxContainer(ground, 40, 100);
+    b2EdgeShape segment;
+    segment.SetTwoSided(b2Vec2(-800.0f, -80.0f), b2Vec2(800.0f, -80.0f));
+    addFixture(ground, segment, 0.0f);
+    const b2Vec2 leftPoints[3] = {{-1.0f, 0.0f}, {0.5f, 1.0f}, {0.0f, 2.0f}};
+    const b2Vec2 rightPoints[3] = {{1.0f, 0.0f}, {-0.5f, 1.0f}, {0.0f, 2.0f}};
+    b2PolygonShape left, right;
+    left.Set(leftPoints, 3);
+    right.Set(rightPoints, 3);
+    const int columns = 20, rows = 150;
+    const double shift = 2.0, extraY = 0.25, centerX = shift * columns / 2.0 - 1.0, centerY = 1.15 / 2.0, yStart = 5.0;
+    double side = 0.25;
+    for (int i = 0; i < columns; ++i)
+        for (int j = 0; j < rows; ++j, side = -side) {
+            b2Body* body = s.addBody(b2_dynamicBody, b2Vec2((float)(i * shift - centerX + side),
+                                                            (float)(j * (shift + extraY) + centerY + yStart)));
+            addFixture(body, left, 1.0f, 0.5f);
+            addFixture(body, right, 1.0f, 0.5f);
+        }
+    return s;
+}
+
+// Box2D v3's junkyard: 200 x 40 pentagons (radius 0.25 m) fall into a 160 m container with 50 m
+// walls, swept by a kinematic 4 x 8 m pusher. 2.4.1 has no b2Body_SetTargetTransform: before step
+// k the pusher gets the velocity that takes it to x = 60 sin(0.2 k dt) in one step, which is what
+// that function (and rigidlab's World::setTarget) sets.
+SuiteWorld junkyard(const Options& o) {
+    SuiteWorld s = emptySuiteWorld(true, o);
+    addBoxContainer(s.addBody(b2_staticBody, b2Vec2(0.0f, 0.0f)), 80, 50);
+    const double pi = 3.14159265358979323846, radius = 0.25, phi = pi * (std::sqrt(5.0) - 1.0);
+    b2Vec2 points[5];
+    for (int k = 0; k < 5; ++k) points[k] = b2Vec2((float)(radius * std::cos(phi * k)), (float)(radius * std::sin(phi * k)));
+    b2PolygonShape pentagon;
+    pentagon.Set(points, 5);  // the convex hull, in 2.4.1's order
+    const int columns = 200, rows = 40;
+    double side = -0.1;
+    for (int i = 0; i < columns; ++i)
+        for (int j = 0; j < rows; ++j, side = -side)
+            addFixture(s.addBody(b2_dynamicBody, b2Vec2((float)(1.5 * (2.0 * i - columns) * radius + side),
+                                                        (float)(4.0 * j * radius + 15.0))),
+                       pentagon);
+    b2Body* pusher = s.addBody(b2_kinematicBody, b2Vec2(0.0f, 0.0f));
+    addFixture(pusher, boxShape(4.0f, 8.0f, b2Vec2(0.0f, 4.0f)));
+    s.beforeStep = [pusher](SuiteWorld&, int step) {
+        const double dt = 1.0 / 60.0;
+        const double x = 60.0 * std::sin(0.2 * dt * step);
+        pusher->SetLinearVelocity(b2Vec2((float)((x - pusher->GetPosition().x) / dt), (float)(-pusher->GetPosition().y / dt)));
+    };
+    return s;
+}
+
+// Box2D v3's washer: a kinematic drum turning at 25 deg/s about (0, 10), drifting at (0.001, -0.002)
+// m/s, of 36 ring pieces (16 to 18 m, 10 deg plus 1 deg over each neighbour) and 4 fins (14 to 16 m)
+// holds 90 x 90 boxes of 0.2 m. v3 (and rigidlab) report hit events of the boxes; 2.4.1 has none
+// (a contact listener would be the nearest, and would cost what v3's events do not): left out.
+SuiteWorld washer(const Options& o) {
+    SuiteWorld s = emptySuiteWorld(true, o);
+    s.addBody(b2_staticBody, b2Vec2(0.0f, 0.0f));  // v3's ground body without shapes
+    b2Body* drum = s.addBody(b2_kinematicBody, b2Vec2(0.0f, 10.0f));
+    const double pi = 3.14159265358979323846, r0 = 14.0, r1 = 16.0, r2 = 18.0, step = pi / 18.0;
+    const auto at = [](double r, double angle) { return b2Vec2((float)(r * std::cos(angle)), (float)(r * std::sin(angle))); };
+    for (int i = 0; i < 36; ++i) {
+        const double t1 = i * step, t2 = (i + 1) * step;
+        const b2Vec2 quad[4] = {at(r1, t1 - 0.1 * step), at(r2, t1 - 0.1 * step), at(r2, t2 + 0.1 * step), at(r1, t2 + 0.1 * step)};
+        b2PolygonShape piece;
+        piece.Set(quad, 4);
+        addFixture(drum, piece);
+        if (i % 9 == 0) {
+            const b2Vec2 fin[4] = {at(r0, t1), at(r1, t1), at(r1, t2), at(r0, t2)};
+            piece.Set(fin, 4);
+            addFixture(drum, piece);
+        }
+    }
+    drum->SetAngularVelocity((float)(pi / 180.0 * 25.0));
+    drum->SetLinearVelocity(b2Vec2(0.001f, -0.002f));
+    const int grid = 90;
+    const double a = 0.1;
+    const b2PolygonShape box = boxShape((float)(2.0 * a), (float)(2.0 * a));
+    double y = -1.1 * a * grid + 10.0;
+    for (int i = 0; i < grid; ++i, y += 2.1 * a) {
+        double x = -1.1 * a * grid;
+        for (int j = 0; j < grid; ++j, x += 2.1 * a) addFixture(s.addBody(b2_dynamicBody, b2Vec2((float)x, (float)y)), box);
+    }
+    return s;
+}
+
 SuiteWorld buildSuite(const std::string& name, const Options& o) {
+    if (name == "compounds") return compounds(o);
+    if (name == "junkyard") return junkyard(o);
+    if (name == "washer") return washer(o);
     if (name == "large_pyramid") return largePyramid(o);
     if (name == "many_pyramids") return manyPyramids(o);
     if (name == "joint_grid") return jointGrid(o);
@@ -551,6 +653,7 @@ SuiteRun runSuiteOnce(const SuiteInfo& info, int steps, const Options& o) {
         for (int k = 0; k < c->GetManifold()->pointCount; ++k)
             f.maxPenetration = std::max(f.maxPenetration, (double)-wm.separations[k]);
     }
+    f.escaped = suiteEscaped(info.name, figures);
     run.metrics = suiteMetricsJson(f, figures);
     return run;
 }

@@ -134,7 +134,7 @@ static RunResult runOnce(const Scene& sc, const Options& o) {
 }
 
 // ------------------------------------------------------------ Box2D v3 suite --
-// The seven scenes of Box2D v3's benchmark suite (suite.h), built as rigidlab's
+// The ten scenes of Box2D v3's benchmark suite (suite.h), built as rigidlab's
 // engine/app/bench_suite.cpp builds them: the same bodies, shapes, densities, materials, filters,
 // joints and step counts, each of rigidlab's words said in Chipmunk's where it is used.
 
@@ -157,6 +157,7 @@ struct SuiteSpace {
     const Options* o = nullptr;
     std::deque<SuiteDyn> dyn;
     int joints = 0;  // rigidlab's joints alive: pivots only, not their limit/motor/spring helpers
+    cpBody* pusher = nullptr;  // junkyard's kinematic pusher
     cpBody* ground() const { return cpSpaceGetStaticBody(space); }  // rigidlab's static body at the origin
 };
 
@@ -498,6 +499,94 @@ static void suiteTumbler(SuiteSpace& s) {
     }
 }
 
+// The static container of compounds and junkyard: a floor of 1.1 x 1 m boxes 1 m apart along y = 0
+// from x = -half to half, and at x = +-half a wall of `wall` 1 x 1.1 m boxes stacked from y = 1.
+static void addBoxContainer(SuiteSpace& s, int half, int wall) {
+    for (int i = 0; i <= 2 * half; ++i) addShape(s, boxShape(s.ground(), 1.1, 1.0, cpv(i - half, 0.0)));
+    for (int side : {-1, 1})
+        for (int i = 0; i < wall; ++i) addShape(s, boxShape(s.ground(), 1.0, 1.1, cpv(side * half, i + 1.0)));
+}
+
+// rigidlab's makePolygon: Chipmunk takes the points' convex hull, radius 0.
+static cpShape* polyShape(cpBody* body, const std::vector<cpVect>& points) {
+    return cpPolyShapeNew(body, (int)points.size(), points.data(), cpTransformIdentity, 0.0);
+}
+
+// A kinematic body (Chipmunk's turn about its centre of gravity, the origin here, as v3's about
+// their origin).
+static cpBody* addKinematic(SuiteSpace& s, cpVect position) {
+    cpBody* body = cpSpaceAddBody(s.space, cpBodyNewKinematic());
+    cpBodySetPosition(body, position);
+    return body;
+}
+
+// Box2D v3's compounds: 20 x 150 bodies of two overlapping triangles (density 1, friction 0.5)
+// fall into an 80 m container with 100 m walls; a 1600 m segment 80 m below catches what falls out.
+static void suiteCompounds(SuiteSpace& s) {
+    addBoxContainer(s, 40, 100);
+    addShape(s, cpSegmentShapeNew(s.ground(), cpv(-800.0, -80.0), cpv(800.0, -80.0), 0.0), 0.0);
+    const std::vector<cpVect> left = {cpv(-1.0, 0.0), cpv(0.5, 1.0), cpv(0.0, 2.0)};
+    const std::vector<cpVect> right = {cpv(1.0, 0.0), cpv(-0.5, 1.0), cpv(0.0, 2.0)};
+    const int columns = 20, rows = 150;
+    const double shift = 2.0, extraY = 0.25, centerX = shift * columns / 2.0 - 1.0, centerY = 1.15 / 2.0, yStart = 5.0;
+    double side = 0.25;
+    for (int i = 0; i < columns; ++i)
+        for (int j = 0; j < rows; ++j, side = -side) {
+            cpBody* body = addDynamic(s, cpv(i * shift - centerX + side, j * (shift + extraY) + centerY + yStart));
+            addShape(s, polyShape(body, left), 1.0, 0.5);
+            addShape(s, polyShape(body, right), 1.0, 0.5);
+        }
+}
+
+// Box2D v3's junkyard: 200 x 40 pentagons (radius 0.25 m) fall into a 160 m container with 50 m
+// walls, swept by a kinematic 4 x 8 m pusher whose velocity is set before each step (junkyardPush).
+static void suiteJunkyard(SuiteSpace& s) {
+    addBoxContainer(s, 80, 50);
+    const double radius = 0.25, phi = CP_PI * (std::sqrt(5.0) - 1.0);
+    std::vector<cpVect> pentagon;
+    for (int k = 0; k < 5; ++k) pentagon.push_back(cpv(radius * std::cos(phi * k), radius * std::sin(phi * k)));
+    const int columns = 200, rows = 40;
+    double side = -0.1;
+    for (int i = 0; i < columns; ++i)
+        for (int j = 0; j < rows; ++j, side = -side)
+            addShape(s, polyShape(addDynamic(s, cpv(1.5 * (2.0 * i - columns) * radius + side, 4.0 * j * radius + 15.0)), pentagon));
+    s.pusher = addKinematic(s, cpvzero);
+    addShape(s, boxShape(s.pusher, 4.0, 8.0, cpv(0.0, 4.0)));
+}
+
+// Before step k: the velocity that takes the pusher to x = 60 sin(0.2 k dt) in one step (Box2D v3's
+// b2Body_SetTargetTransform, rigidlab's World::setTarget).
+static void junkyardPush(SuiteSpace& s, int step, double dt) {
+    const cpVect p = cpBodyGetPosition(s.pusher);
+    cpBodySetVelocity(s.pusher, cpv((60.0 * std::sin(0.2 * dt * step) - p.x) / dt, -p.y / dt));
+}
+
+// Box2D v3's washer: a kinematic drum turning at 25 deg/s about (0, 10), drifting at (0.001, -0.002)
+// m/s, of 36 ring pieces (16 to 18 m, 10 deg plus 1 deg over each neighbour) and 4 fins (14 to 16 m)
+// holds 90 x 90 boxes of 0.2 m. v3 (and rigidlab) report hit events of the boxes; Chipmunk has none
+// of its own (a post-solve callback would be the nearest, and would cost what v3's events do not):
+// left out. Chipmunk wakes whatever touches a kinematic body at every step (cpSpaceComponent.c).
+static void suiteWasher(SuiteSpace& s) {
+    cpBody* drum = addKinematic(s, cpv(0.0, 10.0));
+    cpBodySetAngularVelocity(drum, CP_PI / 180.0 * 25.0);
+    cpBodySetVelocity(drum, cpv(0.001, -0.002));
+    const double r0 = 14.0, r1 = 16.0, r2 = 18.0, step = CP_PI / 18.0;
+    const auto at = [](double r, double angle) { return cpv(r * std::cos(angle), r * std::sin(angle)); };
+    for (int i = 0; i < 36; ++i) {
+        const double t1 = i * step, t2 = (i + 1) * step;
+        addShape(s, polyShape(drum, {at(r1, t1 - 0.1 * step), at(r2, t1 - 0.1 * step), at(r2, t2 + 0.1 * step),
+                                     at(r1, t2 + 0.1 * step)}));
+        if (i % 9 == 0) addShape(s, polyShape(drum, {at(r0, t1), at(r1, t1), at(r1, t2), at(r0, t2)}));
+    }
+    const int grid = 90;
+    const double a = 0.1;
+    double y = -1.1 * a * grid + 10.0;
+    for (int i = 0; i < grid; ++i, y += 2.1 * a) {
+        double x = -1.1 * a * grid;
+        for (int j = 0; j < grid; ++j, x += 2.1 * a) addShape(s, boxShape(addDynamic(s, cpv(x, y)), 2.0 * a, 2.0 * a));
+    }
+}
+
 // The deepest touching point of each of a body's arbiters (each pair once, as countArbiter),
 // recomputed with cpShapesCollide. Chipmunk integrates positions before it finds its contacts
 // (cpSpaceStep), so the last step's contacts are where the bodies are now; recomputing them reads
@@ -556,6 +645,9 @@ static SuiteRun runSuiteOnce(const SuiteInfo& info, int steps, const Options& o)
     else if (name == "smash") suiteSmash(s);
     else if (name == "spinner") suiteSpinner(s);
     else if (name == "tumbler") suiteTumbler(s);
+    else if (name == "compounds") suiteCompounds(s);
+    else if (name == "junkyard") suiteJunkyard(s);
+    else if (name == "washer") suiteWasher(s);
     run.setupMs = msSince(t0, Clock::now());
 
     // rigidlab times the scene's own edits before a step (its before_step: the rain's spawning and
@@ -564,6 +656,7 @@ static SuiteRun runSuiteOnce(const SuiteInfo& info, int steps, const Options& o)
     for (int i = 0; i < steps; ++i) {
         auto a = Clock::now();
         if (name == "ragdolls") rain.beforeStep(s, i);
+        if (name == "junkyard") junkyardPush(s, i, dt);
         if (hasty)
             cpHastySpaceStep(s.space, dt);
         else
@@ -600,6 +693,7 @@ static SuiteRun runSuiteOnce(const SuiteInfo& info, int steps, const Options& o)
         figures.push_back(b);
     }
     f.joints = s.joints;
+    f.escaped = suiteEscaped(name, figures);
     run.contacts = contacts;
     run.dynamicBodies = f.bodies;
     run.metrics = suiteMetricsJson(f, figures);

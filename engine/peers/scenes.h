@@ -54,7 +54,8 @@ struct Options {
 inline void usage(const char* prog) {
     std::fprintf(stderr,
         "usage: %s <pyramid|stack|rain|massratio|bullet> [--n=N] [--steps=S] [--reps=R]\n"
-        "       %s <large_pyramid|many_pyramids|joint_grid|ragdolls|smash|spinner|tumbler> [--steps=S] [--reps=R]\n"
+        "       %s <large_pyramid|many_pyramids|joint_grid|ragdolls|smash|spinner|tumbler|\n"
+        "           compounds|junkyard|washer> [--steps=S] [--reps=R]\n"
         "          (Box2D v3's benchmark suite, as rigidlab's engine/app/bench_suite.cpp builds it; suite.h)\n"
         "          [--sleep=0|1] [--top=heavy|light] [--heavy-half=1.0] [--heavy-mass=1000] [--offset=M]\n"
         "          box2d:    [--vel-iters=8] [--pos-iters=3] [--bullet=0|1] [--continuous=0|1]\n"
@@ -100,7 +101,7 @@ inline bool parseArgs(int argc, char** argv, Options& o) {
         }
     }
     const char* scenes[] = {"pyramid", "stack", "rain", "massratio", "bullet", "large_pyramid", "many_pyramids",
-                            "joint_grid", "ragdolls", "smash", "spinner", "tumbler"};
+                            "joint_grid", "ragdolls", "smash", "spinner", "tumbler", "compounds", "junkyard", "washer"};
     for (const char* s : scenes)
         if (o.scene == s) return true;
     std::fprintf(stderr, "unknown scene '%s'\n", o.scene.c_str());

@@ -1,5 +1,6 @@
 // suite.h - what the peer programs share for Box2D v3's benchmark suite (large_pyramid,
-// many_pyramids, joint_grid, ragdolls, smash, spinner, tumbler): the scenes' sizes, step counts and
+// many_pyramids, joint_grid, ragdolls, smash, spinner, tumbler, compounds, junkyard, washer): the
+// scenes' sizes, step counts and
 // sleeping, the engine-neutral quality figures and the JSON line. Each engine program builds the
 // scenes as rigidlab's engine/app/bench_suite.cpp does, with its own API, and reports the figures
 // rigidlab's suiteMetrics reports, computed the same way:
@@ -8,6 +9,7 @@
 //   moved_gt_0.25m      bodies more than 25 cm from where they were after the first step
 //   mean_drop_m         mean fall of those bodies since the first step (a pile sinking)
 //   top_height_loss_m   fall of the body that was highest after the first step
+//   escaped             (compounds, junkyard, washer) bodies out of the scene's container at the end
 #pragma once
 
 #include "scenes.h"
@@ -25,7 +27,8 @@ inline const SuiteInfo* suiteInfo(const std::string& name) {
     static const SuiteInfo kSuite[] = {
         {"large_pyramid", 5050, 500, false}, {"many_pyramids", 22000, 200, false}, {"joint_grid", 10000, 500, false},
         {"ragdolls", 11000, 1000, true},     {"smash", 9601, 300, true},          {"spinner", 6077, 500, true},
-        {"tumbler", 2026, 750, true},
+        {"tumbler", 2026, 750, true},        {"compounds", 3000, 500, true},      {"junkyard", 8001, 800, true},
+        {"washer", 8101, 500, true},
     };
     for (const SuiteInfo& s : kSuite)
         if (name == s.name) return &s;
@@ -43,7 +46,25 @@ struct SuiteFigures {
     int awake = 0, bodies = 0, joints = 0;  // at the end: awake dynamic bodies, dynamic bodies, joints
     double maxPenetration = 0.0;            // the engine computes it at the final positions
     double maxJointGap = 0.0;               // the engine computes it over its revolute/pivot joints
+    int escaped = -1;                       // suiteEscaped; -1: the scene has no container
 };
+
+// Dynamic bodies out of the scene's container at the end, as rigidlab's escapedProbe counts them:
+// compounds and junkyard, below the floor's middle (y < 0) or beyond a wall's middle (|x| > 40, 80);
+// washer, farther than 16 m (the ring's inner face) from the drum's axis at (0, 10). -1 for the
+// other scenes.
+inline int suiteEscaped(const std::string& scene, const std::vector<SuiteBody>& dynamicBodies) {
+    const double halfWidth = scene == "compounds" ? 40.0 : scene == "junkyard" ? 80.0 : 0.0;
+    if (halfWidth == 0.0 && scene != "washer") return -1;
+    int escaped = 0;
+    for (const SuiteBody& b : dynamicBodies) {
+        if (scene == "washer")
+            escaped += std::sqrt(b.x * b.x + (b.y - 10.0) * (b.y - 10.0)) > 16.0 ? 1 : 0;
+        else
+            escaped += b.y < 0.0 || std::abs(b.x) > halfWidth ? 1 : 0;
+    }
+    return escaped;
+}
 
 inline std::string suiteMetricsJson(const SuiteFigures& f, const std::vector<SuiteBody>& dynamicBodies) {
     int moved = 0, tracked = 0;
@@ -68,6 +89,7 @@ inline std::string suiteMetricsJson(const SuiteFigures& f, const std::vector<Sui
     j.integer("moved_gt_0.25m", moved);
     j.num("mean_drop_m", tracked ? drop / tracked : NAN);
     j.num("top_height_loss_m", topLoss);
+    if (f.escaped >= 0) j.integer("escaped", f.escaped);
     return j.done();
 }
 

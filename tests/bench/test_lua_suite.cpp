@@ -18,6 +18,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -235,4 +236,79 @@ TEST_CASE("spinner.lua is the suite's spinner but for the motor's finite max_mot
   }
   const std::string bodies = difference(infinite.world(), lua->world(), false);
   CHECK_MESSAGE(bodies.empty(), "bodies after 3 steps: " << bodies);
+}
+
+TEST_CASE("compounds.lua is the suite's compounds, built and after 3 steps") { compare("compounds", 3); }
+TEST_CASE("junkyard.lua is the suite's junkyard (its pusher set before each step), built and after 3 steps") {
+  compare("junkyard", 3);
+}
+TEST_CASE("washer.lua is the suite's washer, built and after 3 steps") { compare("washer", 3); }
+
+// Box2D v3's benchmark program prints its counts of bodies and shapes: compounds 3001 and 6282
+// (a ground of 81 + 2 × 100 boxes and a segment; 3000 bodies of 2 triangles), junkyard 8002 and
+// 8262 (161 + 2 × 50 ground boxes, 8000 pentagons, the pusher), washer 8102 and 8140 (a ground
+// without shapes, the drum's 36 + 4 pieces, 8100 boxes). The same here, with the same body types.
+TEST_CASE("compounds, junkyard and washer make Box2D v3's bodies and shapes") {
+  struct Expected {
+    const char* name;
+    int bodies, shapes, statics, kinematics, polygon_vertices;  // polygon_vertices: of every dynamic body's shapes
+  };
+  for (const Expected& e : {Expected{"compounds", 3001, 6282, 1, 0, 3}, Expected{"junkyard", 8002, 8262, 1, 1, 5},
+                            Expected{"washer", 8102, 8140, 1, 1, 4}}) {
+    CAPTURE(e.name);
+    BenchWorld bench = suiteScene(e.name).build();
+    World& w = bench.get();
+    int shapes = 0, statics = 0, kinematics = 0, dynamic_shapes = 0, wrong_vertices = 0;
+    for (BodyId id : w.bodyIds()) {
+      const Body& b = w.body(id);
+      shapes += static_cast<int>(b.shapes.size());
+      statics += b.type == BodyType::Static;
+      kinematics += b.type == BodyType::Kinematic;
+      if (!b.isDynamic()) continue;
+      for (ShapeId s : b.shapes) {
+        ++dynamic_shapes;
+        wrong_vertices += static_cast<int>(w.shape(s).geometry.vertices.size()) != e.polygon_vertices;
+      }
+    }
+    CHECK(w.bodyCount() == e.bodies);
+    CHECK(shapes == e.shapes);
+    CHECK(statics == e.statics);
+    CHECK(kinematics == e.kinematics);
+    CHECK(wrong_vertices == 0);
+    CHECK(dynamic_shapes == (e.polygon_vertices == 3 ? 6000 : e.bodies - 2));
+  }
+}
+
+// The washer's drum: kinematic, turning at 25°/s about its centre (0, 10) (the 4 fins every 90°
+// keep the centre of mass on the axis); its ring closed all round between 16 and 18 m (each piece
+// overlaps its neighbours by 1°), so that no box passes through; the grid of boxes centred in it,
+// its corners' centres 9.9√2 = 14.0 m from the axis, as v3 places them.
+TEST_CASE("washer: the drum turns about its axis, its ring is closed, the boxes start where v3 puts them") {
+  BenchWorld bench = suiteScene("washer").build();
+  World& w = bench.get();
+  const Body* drum = nullptr;
+  double farthest = 0.0;
+  for (BodyId id : w.bodyIds()) {
+    const Body& b = w.body(id);
+    if (b.type == BodyType::Kinematic) drum = &b;
+    if (b.isDynamic()) farthest = std::max(farthest, (b.position() - Vec2(0.0, 10.0)).norm());
+  }
+  REQUIRE(drum != nullptr);
+  CHECK((drum->center - Vec2(0.0, 10.0)).norm() < 1e-12);
+  CHECK(drum->angular_velocity == doctest::Approx(std::numbers::pi / 180.0 * 25.0).epsilon(1e-15));
+  CHECK(farthest == doctest::Approx(9.9 * std::sqrt(2.0)).epsilon(1e-12));
+  // Points 16.05 and 17.85 m from the axis every 0.1°: each inside a piece of the ring.
+  int covered = 0, points = 0;
+  for (double r : {16.05, 17.85}) {  // the pieces are chords: their outer edge 18 cos 6° = 17.9 m from the axis at the least
+    for (int k = 0; k < 3600; ++k, ++points) {
+      const double t = k * std::numbers::pi / 1800.0;
+      const Vec2 p = drum->xf.apply(r * Vec2(std::cos(t), std::sin(t)));
+      for (ShapeId s : drum->shapes)
+        if (containsPoint(w.shape(s).geometry, drum->xf, p)) {
+          ++covered;
+          break;
+        }
+    }
+  }
+  CHECK(covered == points);
 }
