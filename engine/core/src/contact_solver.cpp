@@ -50,7 +50,7 @@ double restingWeight(Integrator integrator) {
 
 namespace {
 
-void prepare(WorldImpl& w, Contact& c, SolverPrepared& out, double tangent_speed) {
+void prepare(WorldImpl& w, double dt, Contact& c, SolverPrepared& out, double tangent_speed) {
   const double resting_weight = restingWeight(w.def.integrator);
   const Body& a = w.bodies[c.a];
   const Body& b = w.bodies[c.b];
@@ -81,9 +81,9 @@ void prepare(WorldImpl& w, Contact& c, SolverPrepared& out, double tangent_speed
     // before the end; a persisting one all step long, under a force spread over the step, whose
     // position effect is the integrator's weight κ of the velocity gained (position_correction.cpp).
     if (cp.persisted) {
-      out.overlap_time[i] = resting_weight * w.dt;
+      out.overlap_time[i] = resting_weight * dt;
     } else {
-      out.overlap_time[i] = (vn < 0.0 && cp.separation < 0.0) ? std::min(w.dt, cp.separation / vn) : 0.0;
+      out.overlap_time[i] = (vn < 0.0 && cp.separation < 0.0) ? std::min(dt, cp.separation / vn) : 0.0;
     }
     // Relative velocity of the point at the start of the step.
     const Vec2 v_start = w.start_velocity[c.b] + cross(w.start_angular_velocity[c.b], rb) - w.start_velocity[c.a] -
@@ -98,13 +98,13 @@ void prepare(WorldImpl& w, Contact& c, SolverPrepared& out, double tangent_speed
     target = 0.0;
     if (cp.separation > 0.0) {
       // Speculative point: the bodies may close the gap during the next step, not more.
-      target = -cp.separation / w.dt;
+      target = -cp.separation / dt;
       // A body that would travel more than its inner radius into the other bounces now (from the
       // gap), so it cannot pass through; so does one that continuous detection put at the wall.
       const bool fast = w.ccd_hit[c.a] || w.ccd_hit[c.b] ||
-                        -vn * w.dt > std::min(w.shapes[c.shape_a].geometry.inradius, w.shapes[c.shape_b].geometry.inradius);
+                        -vn * dt > std::min(w.shapes[c.shape_a].geometry.inradius, w.shapes[c.shape_b].geometry.inradius);
       if (fast && vn < -w.def.restitution_threshold) target = -c.restitution * vn;
-      if (!fast && vn < -w.def.restitution_threshold && c.restitution > 0.0 && vn * w.dt < -cp.separation) {
+      if (!fast && vn < -w.def.restitution_threshold && c.restitution > 0.0 && vn * dt < -cp.separation) {
         // A bouncing impact: let it happen next step, where restitution is taken at the moment of
         // contact, instead of stopping the body at the surface here.
         out.normal_mass[i] = out.tangent_mass[i] = 0.0;
@@ -115,7 +115,7 @@ void prepare(WorldImpl& w, Contact& c, SolverPrepared& out, double tangent_speed
       // speed then was v_n − a τ, with a the normal acceleration over the step (from the velocity
       // at its start); after the bounce the same acceleration acts for τ:
       //   v_target = −e (v_n − a τ) + a τ = −e v_n + (1 + e) a τ        (docs/design/accuracy.md §3.12)
-      const double accel = (vn - v_start.dot(n)) / w.dt;
+      const double accel = (vn - v_start.dot(n)) / dt;
       target = std::max(0.0, -c.restitution * vn + (1.0 + c.restitution) * accel * out.overlap_time[i]);
     }
     cp.bounced = !(target <= 0.0);
@@ -538,7 +538,7 @@ SolverContact compact(const Contact& c, const SolverPrepared& prep, uint32_t sur
 
 }  // namespace
 
-void solveContacts(WorldImpl& w) {
+void solveContacts(WorldImpl& w, const StepContext& ctx) {
   // Velocities before the solve, for the contact displacement (position_correction.cpp).
   const size_t n = w.bodies.size();
   w.solve_start_velocity.resize(n);
@@ -549,13 +549,13 @@ void solveContacts(WorldImpl& w) {
   }
   chooseSolvers(w);
   beginExactContacts(w, w.solved.size());
-  softStep(w);
+  softStep(w, ctx);
   if (w.solved.empty() && w.si_joints.empty()) return;
   auto& prepared = w.solver_prepared;
   prepared.assign(w.solved.size(), SolverPrepared{});
   const bool any_surface = !w.contact_surfaces.empty();  // some contact has surface effects (pre_solve.cpp)
   for (size_t k = 0; k < w.solved.size(); ++k)
-    prepare(w, w.contacts[w.solved[k]], prepared[k], any_surface ? w.contact_surfaces[w.solved[k]].tangent_speed : 0.0);
+    prepare(w, ctx.dt, w.contacts[w.solved[k]], prepared[k], any_surface ? w.contact_surfaces[w.solved[k]].tangent_speed : 0.0);
 
   auto& bodies = w.solver_velocities;
   bodies.resize(n);
@@ -583,8 +583,8 @@ void solveContacts(WorldImpl& w) {
   // Joints: on the velocities only (joint.h); their position error is removed afterwards
   // (position_correction.cpp).
   JointStep step;
-  step.h = w.dt;
-  step.inv_h = 1.0 / w.dt;
+  step.h = ctx.dt;
+  step.inv_h = 1.0 / ctx.dt;
   step.warm_starting = w.def.warm_starting;
   for (uint32_t k : w.si_joints) prepareJointAt(w, w.joints[k], step);
   if (w.def.warm_starting) {

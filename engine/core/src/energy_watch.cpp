@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "joint.h"
+#include "step_context.h"
 #include "world_impl.h"
 
 namespace rigidlab {
@@ -169,7 +170,7 @@ void beginEnergyWatch(WorldImpl& w) {
   }
 }
 
-void endEnergyWatch(WorldImpl& w) {
+void endEnergyWatch(WorldImpl& w, const StepContext& ctx) {
   EnergyWatch& e = w.energy;
   if (e.reported || !e.started) return;
   // One pass: kinetic and gravity's energy, what contacts may give back (energy_watch.h), and the
@@ -189,7 +190,7 @@ void endEnergyWatch(WorldImpl& w) {
   }
   const double potential = gravity + (w.forces.empty() ? 0.0 : w.forcePotentialEnergy());
   const double energy = kinetic + potential;
-  const double work = workBound(w, e, w.dt);
+  const double work = workBound(w, e, ctx.dt);
   e.excess += energy - e.energy_start - work;
   e.budget += work;
   e.energy_end = energy;
@@ -200,7 +201,7 @@ void endEnergyWatch(WorldImpl& w) {
   e.reported = true;
   if (named == UINT32_MAX) return;  // no dynamic body: the energy is all in kinematic motion
   const Body& b = w.bodies[named];
-  Incident incident{b.uid, b.name, w.step_count, w.clock.t - w.dt, ""};
+  Incident incident{b.uid, b.name, w.step_count, w.clock.t - ctx.dt, ""};
   incident.frozen = false;
   incident.cause = "the energy grew by " + formatNumber(e.excess) +
                    " J more than forces, motors and kinematic bodies put in, past the bound of " + formatNumber(kBlowUpFactor * allowed) +

@@ -33,6 +33,8 @@
 
 namespace rigidlab {
 
+struct StepContext;  // step_context.h
+
 struct WorldImpl;
 
 struct EnergyWatch {
@@ -60,6 +62,6 @@ struct EnergyWatch {
 };
 
 void beginEnergyWatch(WorldImpl& w);  // before the step's first stage
-void endEnergyWatch(WorldImpl& w);    // after its last
+void endEnergyWatch(WorldImpl& w, const StepContext& ctx);    // after its last
 
 }  // namespace rigidlab

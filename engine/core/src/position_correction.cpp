@@ -129,7 +129,7 @@ void nonlinearGaussSeidel(WorldImpl& w) {
 // s = clamp(Δv·ΔV / |ΔV|², 0, 1) (1 when held by static friction, less when it slides):
 //   Δc = τ Δv + (h − τ) s ΔV,   Δθ = τ Δω + (h − τ) s Δω_k
 // The carrier is the jumping kinematic body the body presses hardest (Σ P of their contact points).
-void applyContactDisplacement(WorldImpl& w) {
+void applyContactDisplacement(WorldImpl& w, double dt) {
   const size_t n = w.bodies.size();
   // Impulse-weighted overlap time per body.
   w.overlap_time.assign(n, 0.0);
@@ -174,20 +174,20 @@ void applyContactDisplacement(WorldImpl& w) {
     const Vec2 center = b.center;
     b.center += tau * dv;
     b.angle += tau * dw;
-    if (!carrying || w.carrier[i] == UINT32_MAX || tau >= w.dt) continue;
+    if (!carrying || w.carrier[i] == UINT32_MAX || tau >= dt) continue;
     const uint32_t k = w.carrier[i];
     const Vec2 jump = w.kinematic_jump[k] + cross(w.kinematic_angular_jump[k], center - w.bodies[k].center);
     const double size = jump.squaredNorm();
     if (!(size > 0.0)) continue;
     const double s = std::clamp(dv.dot(jump) / size, 0.0, 1.0);
-    b.center += ((w.dt - tau) * s) * jump;
-    b.angle += ((w.dt - tau) * s) * w.kinematic_angular_jump[k];
+    b.center += ((dt - tau) * s) * jump;
+    b.angle += ((dt - tau) * s) * w.kinematic_angular_jump[k];
   }
 }
 
 }  // namespace
 
-void correctPositions(WorldImpl& w) {
+void correctPositions(WorldImpl& w, const StepContext& ctx) {
   const size_t n = w.bodies.size();
   w.correction_start.resize(n);
   w.correction_start_angle.resize(n);
@@ -196,10 +196,10 @@ void correctPositions(WorldImpl& w) {
     w.correction_start_angle[i] = w.bodies[i].angle;
   }
   if (w.solved.empty()) {  // no contacts, or all of them solved by the soft step
-    correctJointPositions(w);
+    correctJointPositions(w, ctx.dt);
     return;
   }
-  if (w.def.contact_displacement) applyContactDisplacement(w);
+  if (w.def.contact_displacement) applyContactDisplacement(w, ctx.dt);
   switch (w.def.position_correction) {
     case PositionCorrection::LinearProjection:
       linearProjection(w);
@@ -217,7 +217,7 @@ void correctPositions(WorldImpl& w) {
     if (w.alive[i] && (b.center != w.correction_start[i] || b.angle != w.correction_start_angle[i]))
       WorldImpl::syncTransform(w.bodies[i]);
   }
-  correctJointPositions(w);  // the joints' errors, at the positions the contacts were corrected to
+  correctJointPositions(w, ctx.dt);  // the joints' errors, at the positions the contacts were corrected to
 }
 
 }  // namespace rigidlab

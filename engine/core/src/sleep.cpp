@@ -58,9 +58,9 @@ void WorldImpl::wakeIsland(uint32_t slot) {
   for (uint32_t k = island_first[id]; k < island_first[id + 1]; ++k) wake(island_members[k]);
 }
 
-void updateSleep(WorldImpl& w) {
+void updateSleep(WorldImpl& w, const StepContext& ctx) {
   const uint32_t n = static_cast<uint32_t>(w.bodies.size());
-  const double dt = w.dt;
+  const double dt = ctx.dt;
   if (!w.def.sleeping) {
     // Nothing sleeps: no islands to find (pay for what you use). Bodies put to sleep before
     // sleeping was switched off wake; sleep times restart once it is switched on again.

@@ -848,10 +848,10 @@ namespace {
 }
 }  // namespace
 
-void softStep(WorldImpl& w) {
+void softStep(WorldImpl& w, const StepContext& ctx) {
   const uint32_t n = static_cast<uint32_t>(w.bodies.size());
   const int substeps = w.def.substeps;
-  const double h = w.dt / substeps, inv_h = 1.0 / h;
+  const double h = ctx.dt / substeps, inv_h = 1.0 / h;
   // The contacts and joints were chosen by solveContacts (contact_solver.cpp).
   if (w.soft_solved.empty() && w.soft_joints.empty()) return;
 

@@ -149,7 +149,10 @@ struct WorldImpl {
   bool jointBlocksCollision(uint32_t a, uint32_t b) const;
 
   SimClock clock;
-  double dt = 0.0;  // of the step in progress [s]
+  // The last step's dt [s]. No stage reads it (they read StepContext::dt, step_context.h); it is
+  // kept only because the saved-world format has carried it since version 1 (snapshot_format.cpp),
+  // so files stay byte for byte what they were.
+  double last_dt = 0.0;
   long step_count = 0;
   // Per body slot: step_count + 1 if the body was created asleep (BodyDef::awake = false) since the
   // last step, else older. Shapes added to such a body before it is stepped do not wake it: the
