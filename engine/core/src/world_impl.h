@@ -105,7 +105,8 @@ class StageScratch {
   std::shared_ptr<T> p_;  // shared_ptr: destroyed where T is not known
 };
 
-struct MechanismStage;  // mechanism_step.cpp
+struct MechanismStage;   // mechanism_step.cpp
+struct SoftStepScratch;  // soft_step.cpp
 
 struct WorldImpl {
   WorldDef def;
@@ -208,33 +209,7 @@ struct WorldImpl {
   std::vector<SolverContact> solver_contacts;
   std::vector<SolverPrepared> solver_prepared;  // per solved contact
   std::vector<SolverSurface> solver_surfaces;   // the solved contacts with surface effects (SolverContact::surface)
-  // The soft step's (soft_step.cpp).
-  std::vector<SoftBody> soft_bodies;
-  std::vector<SoftLanes> soft_lanes;
-  std::vector<SoftTally> soft_tally;      // per lane of soft_lanes
-  std::vector<SoftTotals> soft_totals;    // per group of soft_lanes
-  std::vector<SoftSurfaceLanes> soft_surfaces;  // per group of soft_lanes when some has surface effects, else empty
-  std::vector<uint32_t> soft_source;      // per lane: index into contacts, or UINT32_MAX if empty
-  std::vector<uint32_t> soft_slot;        // per soft contact: its lane (group · L + lane)
-  std::vector<uint32_t> soft_colors_used; // per slot: colours of the contacts that move the body
-  std::vector<uint8_t> soft_color;        // per soft contact
-  std::vector<uint32_t> soft_color_order; // the soft contacts in the order they are coloured
-  std::vector<uint8_t> soft_color_bucket; // per soft contact: its place in that order (hash bucket)
-  std::vector<uint32_t> soft_color_first; // per colour, then the serial groups, then the end: first group
-  std::vector<SoftKick> soft_kick;        // per slot: velocity the step's forces add per sub-step
-  std::vector<SoftKick> soft_warm;        // per slot: the next sub-step's warm start
-  std::vector<double> soft_angle;         // per slot: angle minus the angle at detection
-  std::vector<char> soft_moved;           // per slot: 1 in contact and awake, 2 if also pushed
-  std::vector<uint32_t> soft_list;        // the slots with soft_moved ≠ 0
-  std::vector<JointBodies> soft_joint_bodies;  // per entry of soft_joints: its bodies' SoftBody
-  // What the last colouring was made from (soft_step.cpp sameGraph): each soft contact's bodies, and
-  // soft_moved; soft_graph_valid is false until the first colouring.
-  struct GraphPair {
-    uint32_t a, b;
-  };
-  std::vector<GraphPair> soft_graph_pairs;
-  std::vector<char> soft_graph_moved;
-  bool soft_graph_valid = false;
+  StageScratch<SoftStepScratch> soft_step;  // the soft step's (soft_step.cpp)
   std::vector<Vec2> solve_start_velocity;  // per slot: velocity before the contact solve
   std::vector<double> solve_start_angular_velocity;
   std::vector<double> overlap_time;       // per slot: Σ P τ over its contact points (position_correction)
