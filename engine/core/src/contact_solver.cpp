@@ -27,6 +27,17 @@
 #include "world_impl.h"
 
 namespace rigidlab {
+
+// The contact solver's scratch (WorldImpl::contact_solver holds it, opaque to the other stages):
+// compact working copies written anew in each step before they are read.
+struct ContactSolverScratch {
+  std::vector<SolverBody> velocities;  // per body slot
+  std::vector<SolverContact> contacts;  // per solved contact
+  std::vector<SolverSurface> surfaces;  // the solved contacts with surface effects (SolverContact::surface)
+  std::vector<double> island_joint_sizes;  // per constraint of an island: its joint's impulse size
+  std::vector<uint32_t> island_points;  // per island root: contact points (chooseSolvers)
+};
+
 namespace {
 
 inline Vec2 relativeVelocity(const Body& a, const Body& b, const Vec2& ra, const Vec2& rb) {
@@ -310,7 +321,7 @@ double impulseSize(const JointImpulses& p) {
          std::abs(p.spring_x) + std::abs(p.spring_y);
 }
 
-void convergeSmallIslands(WorldImpl& w, std::vector<SolverBody>& bodies, std::vector<SolverContact>& constraints,
+void convergeSmallIslands(WorldImpl& w, ContactSolverScratch& own, std::vector<SolverBody>& bodies, std::vector<SolverContact>& constraints,
                           const JointStep& step) {
   const auto& joints = w.si_joints;
   if (constraints.empty() && joints.empty()) return;
@@ -353,15 +364,15 @@ void convergeSmallIslands(WorldImpl& w, std::vector<SolverBody>& bodies, std::ve
       jointed |= order[end] >= nc;
       ++end;
     }
-    if (!jointed && takesExactPath(w, bodies, constraints, std::span<const uint32_t>(order.data() + start, end - start))) {
+    if (!jointed && takesExactPath(w, !own.surfaces.empty(), bodies, constraints, std::span<const uint32_t>(order.data() + start, end - start))) {
       // Masses too far apart for the passes (contact_exact.cpp): the island's problem solved at once.
       solveExactContactIsland(w, bodies, constraints, std::span<const uint32_t>(order.data() + start, end - start));
     } else if (points <= static_cast<uint32_t>(kSmallIsland)) {
       const int passes = (jointed ? kMoreJointIterations : kMoreIterations) * w.def.iterations;
-      const bool plain = w.solver_surfaces.empty();  // no contact with surface effects
+      const bool plain = own.surfaces.empty();  // no contact with surface effects
       // Per joint of the island, the size of its impulses after its last solve (only its own solve
       // changes them).
-      auto& sizes = w.island_joint_sizes;
+      auto& sizes = own.island_joint_sizes;
       sizes.assign(end - start, -1.0);
       for (int it = w.def.iterations; it < passes; ++it) {
         double change = 0.0, size = 0.0;
@@ -388,7 +399,7 @@ void convergeSmallIslands(WorldImpl& w, std::vector<SolverBody>& bodies, std::ve
         if (plain) {
           contactPass([&](SolverContact& c) { solveContact<false>(bodies, c, nullptr); });
         } else {
-          contactPass([&](SolverContact& c) { solve(bodies, c, w.solver_surfaces); });
+          contactPass([&](SolverContact& c) { solve(bodies, c, own.surfaces); });
         }
         if (change <= 1e-9 * size) break;
       }
@@ -402,7 +413,7 @@ void convergeSmallIslands(WorldImpl& w, std::vector<SolverBody>& bodies, std::ve
 // contacts; static and sleeping bodies do not join them) of at least soft_step_points contact
 // points go to the soft step: sequential impulses cannot carry a pile of more than about 50 rows,
 // while small islands are solved exactly by them (mass ratios, impacts, Newton's cradle).
-void chooseSolvers(WorldImpl& w) {
+void chooseSolvers(WorldImpl& w, ContactSolverScratch& own) {
   w.solved.clear();
   w.soft_solved.clear();
   auto& refs = w.solved_refs;
@@ -411,7 +422,7 @@ void chooseSolvers(WorldImpl& w) {
   soft_refs.clear();
   const ContactSolver mode = w.def.contact_solver;
   auto& parent = w.island_parent;
-  auto& points = w.island_points;
+  auto& points = own.island_points;
   if (mode == ContactSolver::Auto) {
     parent.resize(w.bodies.size());
     for (uint32_t i = 0; i < parent.size(); ++i) parent[i] = i;
@@ -547,7 +558,8 @@ void solveContacts(WorldImpl& w, const StepContext& ctx) {
     w.solve_start_velocity[i] = w.bodies[i].velocity;
     w.solve_start_angular_velocity[i] = w.bodies[i].angular_velocity;
   }
-  chooseSolvers(w);
+  ContactSolverScratch& own = w.contact_solver.get();
+  chooseSolvers(w, own);
   beginExactContacts(w, w.solved.size());
   softStep(w, ctx);
   if (w.solved.empty() && w.si_joints.empty()) return;
@@ -557,7 +569,7 @@ void solveContacts(WorldImpl& w, const StepContext& ctx) {
   for (size_t k = 0; k < w.solved.size(); ++k)
     prepare(w, ctx.dt, w.contacts[w.solved[k]], prepared[k], any_surface ? w.contact_surfaces[w.solved[k]].tangent_speed : 0.0);
 
-  auto& bodies = w.solver_velocities;
+  auto& bodies = own.velocities;
   bodies.resize(n);
   for (size_t i = 0; i < n; ++i) {
     const Body& b = w.bodies[i];
@@ -569,11 +581,11 @@ void solveContacts(WorldImpl& w, const StepContext& ctx) {
       bodies[i] = {0.0, 0.0, 0.0, 0.0, 0.0};  // static or asleep: immovable
     }
   }
-  auto& constraints = w.solver_contacts;
+  auto& constraints = own.contacts;
   constraints.clear();
   // Surface effects (pre_solve.cpp) for the contacts that have them; the rolling impulse starts
   // from zero each step.
-  auto& surfaces = w.solver_surfaces;
+  auto& surfaces = own.surfaces;
   surfaces.clear();
   for (size_t k = 0; k < w.solved.size(); ++k) {
     const Contact& c = w.contacts[w.solved[k]];
@@ -602,16 +614,16 @@ void solveContacts(WorldImpl& w, const StepContext& ctx) {
   // then the equalities exactly again (the passes for contacts, limits and motors moved them).
   findJointIslands(w);
   directJointVelocities(w, bodies);
-  const bool plain = w.solver_surfaces.empty();  // no contact with surface effects
+  const bool plain = own.surfaces.empty();  // no contact with surface effects
   for (int it = 0; it < w.def.iterations; ++it) {
     for (uint32_t k : w.si_joints) solveJointVelocity(bodies, w.joints[k], step, false);
     if (plain) {
       for (SolverContact& c : constraints) solveContact<false>(bodies, c, nullptr);
     } else {
-      for (SolverContact& c : constraints) solve(bodies, c, w.solver_surfaces);
+      for (SolverContact& c : constraints) solve(bodies, c, own.surfaces);
     }
   }
-  convergeSmallIslands(w, bodies, constraints, step);
+  convergeSmallIslands(w, own, bodies, constraints, step);
   directJointVelocities(w, bodies);
 
   for (size_t k = 0; k < constraints.size(); ++k) {

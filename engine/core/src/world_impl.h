@@ -107,6 +107,7 @@ class StageScratch {
 
 struct MechanismStage;   // mechanism_step.cpp
 struct SoftStepScratch;  // soft_step.cpp
+struct ContactSolverScratch;  // contact_solver.cpp
 
 struct WorldImpl {
   WorldDef def;
@@ -204,11 +205,11 @@ struct WorldImpl {
   ImpactScratch impact;  // located impacts (impact.h)
   StageScratch<MechanismStage> mechanisms;  // exact mechanisms (mechanism_step.cpp)
 
-  // The contact solver's compact working copies (contact_solver.cpp).
-  std::vector<SolverBody> solver_velocities;
-  std::vector<SolverContact> solver_contacts;
-  std::vector<SolverPrepared> solver_prepared;  // per solved contact
-  std::vector<SolverSurface> solver_surfaces;   // the solved contacts with surface effects (SolverContact::surface)
+  StageScratch<ContactSolverScratch> contact_solver;  // the contact solver's working copies (contact_solver.cpp)
+  // Per entry of `solved`: the contact prepared for the solve (contact_solver.cpp), which position
+  // correction reads after it (the points fixed to their bodies, the overlap time): passed from one
+  // stage to the next within a step, so not one stage's scratch.
+  std::vector<SolverPrepared> solver_prepared;
   StageScratch<SoftStepScratch> soft_step;  // the soft step's (soft_step.cpp)
   std::vector<Vec2> solve_start_velocity;  // per slot: velocity before the contact solve
   std::vector<double> solve_start_angular_velocity;
@@ -353,7 +354,6 @@ struct WorldImpl {
   std::vector<SolvedRef> solved_refs;      // per entry of solved: its bodies (contact_solver.cpp)
   std::vector<SolvedRef> soft_refs;        // per entry of soft_solved
   std::vector<uint32_t> island_order;      // the solver's constraints grouped by island
-  std::vector<double> island_joint_sizes;  // per constraint of an island: its joint's impulse size (contact_solver.cpp)
   std::vector<Contact> previous_contacts;  // narrow_phase.cpp: last step's contacts moved out of the way
   // narrow_phase.cpp: written in place, the last step's contacts would have had to move out of the
   // way of new ones (contacts begin more than end), so this step writes them anew.
@@ -369,7 +369,6 @@ struct WorldImpl {
   UncopiedFlag island_members_current;
   std::vector<uint32_t> island_parent;  // union–find scratch
   std::vector<char> island_dynamic;     // per slot: alive and not static (sleep.cpp)
-  std::vector<uint32_t> island_points;  // per island root: contact points (contact_solver.cpp)
   // The direct joint solve's islands (joint_direct.cpp): joint indices grouped by island, island i
   // being joint_island_joints[joint_island_start[i] .. joint_island_start[i + 1]).
   std::vector<uint32_t> joint_island_joints, joint_island_start;
