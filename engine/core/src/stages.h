@@ -25,10 +25,15 @@ void settleLocatedContacts(WorldImpl& w);
 void locatedImpactEvents(WorldImpl& w);
 void guardNonFinite(WorldImpl& w, const char* stage);  // nan_guard.cpp  after integrate and at the end
 void sweepFastBodies(WorldImpl& w);        // continuous.cpp      fast bodies against static ones
-// The linearly implicit Euler velocity change (implicit_solve.cpp) from the forces in w.wrenches,
-// into w.implicit.dv; false (nothing computed) if no active force can be linearised. `only`: as
-// integrateInterval's.
-bool implicitVelocityChange(WorldImpl& w, double t0, double h, bool stiffness, const char* only);
+// The linearly implicit Euler velocity change (implicit_solve.cpp) from the forces in w.wrenches:
+// body slot i's Δv is (dv[3 r], dv[3 r + 1]), its Δω dv[3 r + 2], with r = row[i]; false (nothing
+// computed) if no active force can be linearised. `only`: as integrateInterval's. The arrays are
+// the solve's scratch, valid until its next call.
+struct ImplicitVelocities {
+  const int* row = nullptr;
+  const double* dv = nullptr;
+};
+bool implicitVelocityChange(WorldImpl& w, double t0, double h, bool stiffness, const char* only, ImplicitVelocities& out);
 void findPairs(WorldImpl& w);              // broad_phase.cpp     docs/design/thesis.md §7
 // Keeps the broad phase's pair list between steps (PairCache, broad_phase.h) for this process; on
 // by default. Off rebuilds every step: the same pairs, for tests.

@@ -108,6 +108,8 @@ class StageScratch {
 struct MechanismStage;   // mechanism_step.cpp
 struct SoftStepScratch;  // soft_step.cpp
 struct ContactSolverScratch;  // contact_solver.cpp
+struct IntegratorScratch;     // integrator.cpp
+struct ImplicitScratch;       // implicit_solve.cpp
 
 struct WorldImpl {
   WorldDef def;
@@ -180,28 +182,9 @@ struct WorldImpl {
   std::vector<Vec2> start_center;     // per slot: state at the start of the step, to undo a failed step
   std::vector<double> start_angle;
   std::vector<double> breakpoints;    // force expiry times inside the current step
-  struct DampingSum {  // integrator.cpp: a body's Force::dampingRate summed over its forces
-    double linear = 0.0, angular = 0.0;
-  };
-  std::vector<DampingSum> damping_sum;  // per slot
+  StageScratch<IntegratorScratch> integrator;  // RK4's stage sums, the dampers' rates (integrator.cpp)
   std::vector<int32_t> force_fault;   // per slot: index of a force that returned a non-finite value, or −1
-  struct ImplicitScratch {  // implicit_solve.cpp
-    std::vector<int> row;     // per slot: row of the body in the system, −1 if not an unknown
-    struct Block {
-      int row, col;
-      Eigen::Matrix3d a;      // −h D − s h² K
-      Eigen::Matrix3d kv;     // s h² K (multiplies v₀ on the right-hand side)
-    };
-    std::vector<Block> blocks;
-    std::vector<Eigen::Vector3d> mass, v0;
-    std::vector<Eigen::Matrix3d> diag;
-    std::vector<char> has_block;
-    Eigen::VectorXd rhs, dv;  // h Q₀ (+ s h² K v₀), and the solution Δv (3 per row)
-  } implicit;
-  struct Rk4Scratch {
-    std::vector<Vec2> c0, v0, dc, dv;
-    std::vector<double> a0, w0, da, dw;
-  } rk4;
+  StageScratch<ImplicitScratch> implicit;  // the linearly implicit solve's system (implicit_solve.cpp)
   ImpactScratch impact;  // located impacts (impact.h)
   StageScratch<MechanismStage> mechanisms;  // exact mechanisms (mechanism_step.cpp)
 
