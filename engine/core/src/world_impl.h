@@ -110,6 +110,7 @@ struct SoftStepScratch;  // soft_step.cpp
 struct ContactSolverScratch;  // contact_solver.cpp
 struct IntegratorScratch;     // integrator.cpp
 struct ImplicitScratch;       // implicit_solve.cpp
+struct PositionCorrectionScratch;  // position_correction.cpp
 
 struct WorldImpl {
   WorldDef def;
@@ -196,10 +197,7 @@ struct WorldImpl {
   StageScratch<SoftStepScratch> soft_step;  // the soft step's (soft_step.cpp)
   std::vector<Vec2> solve_start_velocity;  // per slot: velocity before the contact solve
   std::vector<double> solve_start_angular_velocity;
-  std::vector<double> overlap_time;       // per slot: Σ P τ over its contact points (position_correction)
-  std::vector<double> overlap_weight;     // per slot: Σ P
-  std::vector<Vec2> correction_start;     // per slot: centre before position correction
-  std::vector<double> correction_start_angle;
+  StageScratch<PositionCorrectionScratch> position_correction;  // position_correction.cpp
   // Kinematic bodies' velocity changes between steps (integrator.cpp moveKinematicBodies), which the
   // contact displacement of what they carry takes as impulsive (position_correction.cpp).
   std::vector<Vec2> kinematic_velocity;          // per slot: the velocity it moved with this step
@@ -230,8 +228,6 @@ struct WorldImpl {
     kinematic_angular_velocity[slot] = bodies[slot].angular_velocity;
     kinematic_uid[slot] = bodies[slot].uid;
   }
-  std::vector<uint32_t> carrier;                 // per slot: the jumping kinematic body it presses most
-  std::vector<double> carrier_weight;            // per slot: Σ P of its contacts with that body
 
   BroadPhaseHolder broad_phase;
   std::vector<Proxy> proxies;
