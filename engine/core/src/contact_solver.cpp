@@ -597,9 +597,9 @@ void solveContacts(WorldImpl& w, const StepContext& ctx) {
   JointStep step;
   step.h = ctx.dt;
   step.inv_h = 1.0 / ctx.dt;
-  step.warm_starting = w.def.warm_starting;
+  step.warm_starting = ctx.settings.warm_starting;
   for (uint32_t k : w.si_joints) prepareJointAt(w, w.joints[k], step);
-  if (w.def.warm_starting) {
+  if (ctx.settings.warm_starting) {
     for (uint32_t k : w.si_joints) solveJointVelocity(bodies, w.joints[k], step, true);
     // Start from the impulses carried over from the previous step (narrow_phase.cpp).
     for (SolverContact& c : constraints) {
@@ -615,7 +615,7 @@ void solveContacts(WorldImpl& w, const StepContext& ctx) {
   findJointIslands(w);
   directJointVelocities(w, bodies);
   const bool plain = own.surfaces.empty();  // no contact with surface effects
-  for (int it = 0; it < w.def.iterations; ++it) {
+  for (int it = 0; it < ctx.settings.iterations; ++it) {
     for (uint32_t k : w.si_joints) solveJointVelocity(bodies, w.joints[k], step, false);
     if (plain) {
       for (SolverContact& c : constraints) solveContact<false>(bodies, c, nullptr);

@@ -175,13 +175,13 @@ void endEnergyWatch(WorldImpl& w, const StepContext& ctx) {
   if (e.reported || !e.started) return;
   // One pass: kinetic and gravity's energy, what contacts may give back (energy_watch.h), and the
   // body with the most kinetic energy (the one an incident names).
-  const double push = w.def.contact_push_speed;
+  const double push = ctx.settings.contact_push_speed;
   double kinetic = 0.0, gravity = 0.0, give_back = 0.0, most = -1.0;
   uint32_t named = UINT32_MAX;
   for (uint32_t i = 0; i < w.bodies.size(); ++i) {
     const Body& b = w.bodies[i];
     if (!w.alive[i] || !b.isDynamic()) continue;
-    const Vec2 g = b.gravity_scale * b.gravityOr(w.def.gravity);
+    const Vec2 g = b.gravity_scale * b.gravityOr(ctx.settings.gravity);
     const double k = kineticOf(b);
     kinetic += k;
     gravity -= b.mass * g.dot(b.center);

@@ -455,7 +455,7 @@ void chooseMechanisms(WorldImpl& w, const StepContext& ctx) {
   m.step_start = w.clock.t;
   m.dt = ctx.dt;
   m.settled.assign(w.joints.size(), 0);
-  if (!w.def.exact_joints) return;
+  if (!ctx.settings.exact_joints) return;
   bool any = false;
   for (const Joint& j : w.joints) any |= j.alive;
   if (!any) return;

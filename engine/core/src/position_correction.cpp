@@ -213,9 +213,9 @@ void correctPositions(WorldImpl& w, const StepContext& ctx) {
     correctJointPositions(w, ctx.dt, none);
     return;
   }
-  const bool displaced = w.def.contact_displacement;
+  const bool displaced = ctx.settings.contact_displacement;
   if (displaced) applyContactDisplacement(w, own, ctx.dt);
-  switch (w.def.position_correction) {
+  switch (ctx.settings.position_correction) {
     case PositionCorrection::LinearProjection:
       linearProjection(w, own);
       break;

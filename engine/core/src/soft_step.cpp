@@ -891,7 +891,7 @@ namespace {
 void softStep(WorldImpl& w, const StepContext& ctx) {
   SoftStepScratch& own = w.soft_step.get();
   const uint32_t n = static_cast<uint32_t>(w.bodies.size());
-  const int substeps = w.def.substeps;
+  const int substeps = ctx.settings.substeps;
   const double h = ctx.dt / substeps, inv_h = 1.0 / h;
   // The contacts and joints were chosen by solveContacts (contact_solver.cpp).
   if (w.soft_solved.empty() && w.soft_joints.empty()) return;
@@ -951,10 +951,10 @@ void softStep(WorldImpl& w, const StepContext& ctx) {
 
   // Constraints, in groups of L lanes.
   buildGroups(w);
-  const double hertz = std::min(w.def.contact_hertz, 0.125 * inv_h);
-  const Softness soft = makeSoft(hertz, w.def.contact_damping_ratio, h);
-  const Softness stiff = makeSoft(2.0 * hertz, w.def.contact_damping_ratio, h);
-  const Level levels[2] = {levelOf(soft, w.def.contact_push_speed), levelOf(stiff, w.def.contact_push_speed)};
+  const double hertz = std::min(ctx.settings.contact_hertz, 0.125 * inv_h);
+  const Softness soft = makeSoft(hertz, ctx.settings.contact_damping_ratio, h);
+  const Softness stiff = makeSoft(2.0 * hertz, ctx.settings.contact_damping_ratio, h);
+  const Level levels[2] = {levelOf(soft, ctx.settings.contact_push_speed), levelOf(stiff, ctx.settings.contact_push_speed)};
   auto& groups = own.lanes;
   auto& tallies = own.tally;
   const auto& source = own.source;
@@ -1036,9 +1036,9 @@ void softStep(WorldImpl& w, const StepContext& ctx) {
         // f_s or f_d from the slip at the start of the step (docs/design/thesis.md §10), against the
         // surface's own motion; the bodies still hold the velocities of the start of the step.
         const double slip = relative(a, b, anchorOf(sc, i, l), tan.x(), tan.y()) - tangent_speed;
-        sc.friction[i][l] = std::abs(slip) < w.def.static_friction_speed ? c.static_friction : c.friction;
-        sc.pn[i][l] = w.def.warm_starting ? cp.normal_impulse : 0.0;
-        sc.pt[i][l] = w.def.warm_starting ? cp.tangent_impulse : 0.0;
+        sc.friction[i][l] = std::abs(slip) < ctx.settings.static_friction_speed ? c.static_friction : c.friction;
+        sc.pn[i][l] = ctx.settings.warm_starting ? cp.normal_impulse : 0.0;
+        sc.pt[i][l] = ctx.settings.warm_starting ? cp.tangent_impulse : 0.0;
         sc.acted[l] |= (sc.pn[i][l] != 0.0) | (sc.pt[i][l] != 0.0);
         if (!sc.bounce[l]) continue;
         t.approach[i] = 0.0;
@@ -1098,8 +1098,8 @@ void softStep(WorldImpl& w, const StepContext& ctx) {
   JointStep joint_step;
   joint_step.h = h;
   joint_step.inv_h = inv_h;
-  joint_step.soft = makeSoft(std::min(w.def.joint_hertz, 0.25 * inv_h), w.def.joint_damping_ratio, h);
-  joint_step.warm_starting = w.def.warm_starting;
+  joint_step.soft = makeSoft(std::min(ctx.settings.joint_hertz, 0.25 * inv_h), ctx.settings.joint_damping_ratio, h);
+  joint_step.warm_starting = ctx.settings.warm_starting;
   for (uint32_t k : w.soft_joints) prepareJointAt(w, w.joints[k], joint_step);
   // Each joint's bodies, found once for the step's 3 × substeps passes over the joints.
   auto& joint_bodies = own.joint_bodies;
@@ -1167,7 +1167,7 @@ void softStep(WorldImpl& w, const StepContext& ctx) {
   for (size_t g = 0; g < groups.size(); ++g)
     for (int l = 0; l < L; ++l)
       if (groups[g].bounce[l])
-        restitute(bodies, groups[g], l, tallies[g * L + l], totals[g], w.def.restitution_threshold, substeps,
+        restitute(bodies, groups[g], l, tallies[g * L + l], totals[g], ctx.settings.restitution_threshold, substeps,
                   groups[g].surface ? surfaces[g].tangent_speed[l] : 0.0);
 
   // Write back: impulses for warm starting and reports; bodies that some impulse acted on take the
