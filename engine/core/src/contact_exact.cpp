@@ -197,9 +197,9 @@ void beginExactContacts(WorldImpl& w, size_t solved) {
   s.start.assign(1, 0);
 }
 
-bool takesExactPath(const WorldImpl& w, const std::vector<SolverBody>& bodies, const std::vector<SolverContact>& constraints,
+bool takesExactPath(const WorldImpl& w, bool surfaces, const std::vector<SolverBody>& bodies, const std::vector<SolverContact>& constraints,
                     std::span<const uint32_t> island) {
-  if (!w.solver_surfaces.empty() || w.def.iterations <= 0) return false;
+  if (surfaces || w.def.iterations <= 0) return false;
   int points = 0;
   double lightest = kInf, heaviest = 0.0;
   for (const uint32_t k : island) {

@@ -41,9 +41,10 @@ struct ContactExactScratch {
 // Forgets the last step's exact islands; solved: the number of contacts sequential impulses take.
 void beginExactContacts(WorldImpl& w, size_t solved);
 // Whether an island of sequential impulses' constraints (indices into `constraints`, all contacts,
-// no joint) is one the exact solve takes: at most 64 points, no surface effects, a mass ratio
+// no joint) is one the exact solve takes: at most 64 points, no surface effects (`surfaces`: some
+// solved contact of the step has them), a mass ratio
 // beyond 100:1 (contact_exact.cpp: kExactPoints, kExactMassRatio; docs/physics.md).
-bool takesExactPath(const WorldImpl& w, const std::vector<SolverBody>& bodies, const std::vector<SolverContact>& constraints,
+bool takesExactPath(const WorldImpl& w, bool surfaces, const std::vector<SolverBody>& bodies, const std::vector<SolverContact>& constraints,
                     std::span<const uint32_t> island);
 // Solves the island's contact impulses exactly on the solver's velocities (normal impulses ≥ 0
 // with complementarity, friction within ±μ P_n) and marks its contacts for exactContactPositions.

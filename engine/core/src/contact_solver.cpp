@@ -27,6 +27,17 @@
 #include "world_impl.h"
 
 namespace rigidlab {
+
+// The contact solver's scratch (WorldImpl::contact_solver holds it, opaque to the other stages):
+// compact working copies written anew in each step before they are read.
+struct ContactSolverScratch {
+  std::vector<SolverBody> velocities;  // per body slot
+  std::vector<SolverContact> contacts;  // per solved contact
+  std::vector<SolverSurface> surfaces;  // the solved contacts with surface effects (SolverContact::surface)
+  std::vector<double> island_joint_sizes;  // per constraint of an island: its joint's impulse size
+  std::vector<uint32_t> island_points;  // per island root: contact points (chooseSolvers)
+};
+
 namespace {
 
 inline Vec2 relativeVelocity(const Body& a, const Body& b, const Vec2& ra, const Vec2& rb) {
@@ -50,7 +61,7 @@ double restingWeight(Integrator integrator) {
 
 namespace {
 
-void prepare(WorldImpl& w, Contact& c, SolverPrepared& out, double tangent_speed) {
+void prepare(WorldImpl& w, double dt, Contact& c, SolverPrepared& out, double tangent_speed) {
   const double resting_weight = restingWeight(w.def.integrator);
   const Body& a = w.bodies[c.a];
   const Body& b = w.bodies[c.b];
@@ -81,9 +92,9 @@ void prepare(WorldImpl& w, Contact& c, SolverPrepared& out, double tangent_speed
     // before the end; a persisting one all step long, under a force spread over the step, whose
     // position effect is the integrator's weight κ of the velocity gained (position_correction.cpp).
     if (cp.persisted) {
-      out.overlap_time[i] = resting_weight * w.dt;
+      out.overlap_time[i] = resting_weight * dt;
     } else {
-      out.overlap_time[i] = (vn < 0.0 && cp.separation < 0.0) ? std::min(w.dt, cp.separation / vn) : 0.0;
+      out.overlap_time[i] = (vn < 0.0 && cp.separation < 0.0) ? std::min(dt, cp.separation / vn) : 0.0;
     }
     // Relative velocity of the point at the start of the step.
     const Vec2 v_start = w.start_velocity[c.b] + cross(w.start_angular_velocity[c.b], rb) - w.start_velocity[c.a] -
@@ -98,13 +109,13 @@ void prepare(WorldImpl& w, Contact& c, SolverPrepared& out, double tangent_speed
     target = 0.0;
     if (cp.separation > 0.0) {
       // Speculative point: the bodies may close the gap during the next step, not more.
-      target = -cp.separation / w.dt;
+      target = -cp.separation / dt;
       // A body that would travel more than its inner radius into the other bounces now (from the
       // gap), so it cannot pass through; so does one that continuous detection put at the wall.
       const bool fast = w.ccd_hit[c.a] || w.ccd_hit[c.b] ||
-                        -vn * w.dt > std::min(w.shapes[c.shape_a].geometry.inradius, w.shapes[c.shape_b].geometry.inradius);
+                        -vn * dt > std::min(w.shapes[c.shape_a].geometry.inradius, w.shapes[c.shape_b].geometry.inradius);
       if (fast && vn < -w.def.restitution_threshold) target = -c.restitution * vn;
-      if (!fast && vn < -w.def.restitution_threshold && c.restitution > 0.0 && vn * w.dt < -cp.separation) {
+      if (!fast && vn < -w.def.restitution_threshold && c.restitution > 0.0 && vn * dt < -cp.separation) {
         // A bouncing impact: let it happen next step, where restitution is taken at the moment of
         // contact, instead of stopping the body at the surface here.
         out.normal_mass[i] = out.tangent_mass[i] = 0.0;
@@ -115,7 +126,7 @@ void prepare(WorldImpl& w, Contact& c, SolverPrepared& out, double tangent_speed
       // speed then was v_n − a τ, with a the normal acceleration over the step (from the velocity
       // at its start); after the bounce the same acceleration acts for τ:
       //   v_target = −e (v_n − a τ) + a τ = −e v_n + (1 + e) a τ        (docs/design/accuracy.md §3.12)
-      const double accel = (vn - v_start.dot(n)) / w.dt;
+      const double accel = (vn - v_start.dot(n)) / dt;
       target = std::max(0.0, -c.restitution * vn + (1.0 + c.restitution) * accel * out.overlap_time[i]);
     }
     cp.bounced = !(target <= 0.0);
@@ -310,7 +321,7 @@ double impulseSize(const JointImpulses& p) {
          std::abs(p.spring_x) + std::abs(p.spring_y);
 }
 
-void convergeSmallIslands(WorldImpl& w, std::vector<SolverBody>& bodies, std::vector<SolverContact>& constraints,
+void convergeSmallIslands(WorldImpl& w, ContactSolverScratch& own, std::vector<SolverBody>& bodies, std::vector<SolverContact>& constraints,
                           const JointStep& step) {
   const auto& joints = w.si_joints;
   if (constraints.empty() && joints.empty()) return;
@@ -353,15 +364,15 @@ void convergeSmallIslands(WorldImpl& w, std::vector<SolverBody>& bodies, std::ve
       jointed |= order[end] >= nc;
       ++end;
     }
-    if (!jointed && takesExactPath(w, bodies, constraints, std::span<const uint32_t>(order.data() + start, end - start))) {
+    if (!jointed && takesExactPath(w, !own.surfaces.empty(), bodies, constraints, std::span<const uint32_t>(order.data() + start, end - start))) {
       // Masses too far apart for the passes (contact_exact.cpp): the island's problem solved at once.
       solveExactContactIsland(w, bodies, constraints, std::span<const uint32_t>(order.data() + start, end - start));
     } else if (points <= static_cast<uint32_t>(kSmallIsland)) {
       const int passes = (jointed ? kMoreJointIterations : kMoreIterations) * w.def.iterations;
-      const bool plain = w.solver_surfaces.empty();  // no contact with surface effects
+      const bool plain = own.surfaces.empty();  // no contact with surface effects
       // Per joint of the island, the size of its impulses after its last solve (only its own solve
       // changes them).
-      auto& sizes = w.island_joint_sizes;
+      auto& sizes = own.island_joint_sizes;
       sizes.assign(end - start, -1.0);
       for (int it = w.def.iterations; it < passes; ++it) {
         double change = 0.0, size = 0.0;
@@ -388,7 +399,7 @@ void convergeSmallIslands(WorldImpl& w, std::vector<SolverBody>& bodies, std::ve
         if (plain) {
           contactPass([&](SolverContact& c) { solveContact<false>(bodies, c, nullptr); });
         } else {
-          contactPass([&](SolverContact& c) { solve(bodies, c, w.solver_surfaces); });
+          contactPass([&](SolverContact& c) { solve(bodies, c, own.surfaces); });
         }
         if (change <= 1e-9 * size) break;
       }
@@ -402,7 +413,7 @@ void convergeSmallIslands(WorldImpl& w, std::vector<SolverBody>& bodies, std::ve
 // contacts; static and sleeping bodies do not join them) of at least soft_step_points contact
 // points go to the soft step: sequential impulses cannot carry a pile of more than about 50 rows,
 // while small islands are solved exactly by them (mass ratios, impacts, Newton's cradle).
-void chooseSolvers(WorldImpl& w) {
+void chooseSolvers(WorldImpl& w, ContactSolverScratch& own) {
   w.solved.clear();
   w.soft_solved.clear();
   auto& refs = w.solved_refs;
@@ -411,7 +422,7 @@ void chooseSolvers(WorldImpl& w) {
   soft_refs.clear();
   const ContactSolver mode = w.def.contact_solver;
   auto& parent = w.island_parent;
-  auto& points = w.island_points;
+  auto& points = own.island_points;
   if (mode == ContactSolver::Auto) {
     parent.resize(w.bodies.size());
     for (uint32_t i = 0; i < parent.size(); ++i) parent[i] = i;
@@ -538,7 +549,7 @@ SolverContact compact(const Contact& c, const SolverPrepared& prep, uint32_t sur
 
 }  // namespace
 
-void solveContacts(WorldImpl& w) {
+void solveContacts(WorldImpl& w, const StepContext& ctx) {
   // Velocities before the solve, for the contact displacement (position_correction.cpp).
   const size_t n = w.bodies.size();
   w.solve_start_velocity.resize(n);
@@ -547,17 +558,18 @@ void solveContacts(WorldImpl& w) {
     w.solve_start_velocity[i] = w.bodies[i].velocity;
     w.solve_start_angular_velocity[i] = w.bodies[i].angular_velocity;
   }
-  chooseSolvers(w);
+  ContactSolverScratch& own = w.contact_solver.get();
+  chooseSolvers(w, own);
   beginExactContacts(w, w.solved.size());
-  softStep(w);
+  softStep(w, ctx);
   if (w.solved.empty() && w.si_joints.empty()) return;
   auto& prepared = w.solver_prepared;
   prepared.assign(w.solved.size(), SolverPrepared{});
   const bool any_surface = !w.contact_surfaces.empty();  // some contact has surface effects (pre_solve.cpp)
   for (size_t k = 0; k < w.solved.size(); ++k)
-    prepare(w, w.contacts[w.solved[k]], prepared[k], any_surface ? w.contact_surfaces[w.solved[k]].tangent_speed : 0.0);
+    prepare(w, ctx.dt, w.contacts[w.solved[k]], prepared[k], any_surface ? w.contact_surfaces[w.solved[k]].tangent_speed : 0.0);
 
-  auto& bodies = w.solver_velocities;
+  auto& bodies = own.velocities;
   bodies.resize(n);
   for (size_t i = 0; i < n; ++i) {
     const Body& b = w.bodies[i];
@@ -569,11 +581,11 @@ void solveContacts(WorldImpl& w) {
       bodies[i] = {0.0, 0.0, 0.0, 0.0, 0.0};  // static or asleep: immovable
     }
   }
-  auto& constraints = w.solver_contacts;
+  auto& constraints = own.contacts;
   constraints.clear();
   // Surface effects (pre_solve.cpp) for the contacts that have them; the rolling impulse starts
   // from zero each step.
-  auto& surfaces = w.solver_surfaces;
+  auto& surfaces = own.surfaces;
   surfaces.clear();
   for (size_t k = 0; k < w.solved.size(); ++k) {
     const Contact& c = w.contacts[w.solved[k]];
@@ -583,11 +595,11 @@ void solveContacts(WorldImpl& w) {
   // Joints: on the velocities only (joint.h); their position error is removed afterwards
   // (position_correction.cpp).
   JointStep step;
-  step.h = w.dt;
-  step.inv_h = 1.0 / w.dt;
-  step.warm_starting = w.def.warm_starting;
+  step.h = ctx.dt;
+  step.inv_h = 1.0 / ctx.dt;
+  step.warm_starting = ctx.settings.warm_starting;
   for (uint32_t k : w.si_joints) prepareJointAt(w, w.joints[k], step);
-  if (w.def.warm_starting) {
+  if (ctx.settings.warm_starting) {
     for (uint32_t k : w.si_joints) solveJointVelocity(bodies, w.joints[k], step, true);
     // Start from the impulses carried over from the previous step (narrow_phase.cpp).
     for (SolverContact& c : constraints) {
@@ -602,16 +614,16 @@ void solveContacts(WorldImpl& w) {
   // then the equalities exactly again (the passes for contacts, limits and motors moved them).
   findJointIslands(w);
   directJointVelocities(w, bodies);
-  const bool plain = w.solver_surfaces.empty();  // no contact with surface effects
-  for (int it = 0; it < w.def.iterations; ++it) {
+  const bool plain = own.surfaces.empty();  // no contact with surface effects
+  for (int it = 0; it < ctx.settings.iterations; ++it) {
     for (uint32_t k : w.si_joints) solveJointVelocity(bodies, w.joints[k], step, false);
     if (plain) {
       for (SolverContact& c : constraints) solveContact<false>(bodies, c, nullptr);
     } else {
-      for (SolverContact& c : constraints) solve(bodies, c, w.solver_surfaces);
+      for (SolverContact& c : constraints) solve(bodies, c, own.surfaces);
     }
   }
-  convergeSmallIslands(w, bodies, constraints, step);
+  convergeSmallIslands(w, own, bodies, constraints, step);
   directJointVelocities(w, bodies);
 
   for (size_t k = 0; k < constraints.size(); ++k) {

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "joint.h"
+#include "step_context.h"
 #include "world_impl.h"
 
 namespace rigidlab {
@@ -169,7 +170,7 @@ void beginEnergyWatch(WorldImpl& w) {
   }
 }
 
-void endEnergyWatch(WorldImpl& w) {
+void endEnergyWatch(WorldImpl& w, const StepContext& ctx) {
   EnergyWatch& e = w.energy;
   if (e.reported || !e.started) return;
   // The bodies contacts may push: those in a contact now or at the end of an earlier step.
@@ -179,13 +180,13 @@ void endEnergyWatch(WorldImpl& w) {
   }
   // One pass: kinetic and gravity's energy, what contacts may give back (energy_watch.h), and the
   // body with the most kinetic energy (the one an incident names).
-  const double push = w.def.contact_push_speed;
+  const double push = ctx.settings.contact_push_speed;
   double kinetic = 0.0, gravity = 0.0, give_back = 0.0, most = -1.0;
   uint32_t named = UINT32_MAX;
   for (uint32_t i = 0; i < w.bodies.size(); ++i) {
     const Body& b = w.bodies[i];
     if (!w.alive[i] || !b.isDynamic()) continue;
-    const Vec2 g = b.gravity_scale * b.gravityOr(w.def.gravity);
+    const Vec2 g = b.gravity_scale * b.gravityOr(ctx.settings.gravity);
     const double k = kineticOf(b);
     kinetic += k;
     gravity -= b.mass * g.dot(b.center);
@@ -195,7 +196,7 @@ void endEnergyWatch(WorldImpl& w) {
   }
   const double potential = gravity + (w.forces.empty() ? 0.0 : w.forcePotentialEnergy());
   const double energy = kinetic + potential;
-  const double work = workBound(w, e, w.dt);
+  const double work = workBound(w, e, ctx.dt);
   e.excess += energy - e.energy_start - work;
   e.budget += work;
   e.energy_end = energy;
@@ -206,7 +207,7 @@ void endEnergyWatch(WorldImpl& w) {
   e.reported = true;
   if (named == UINT32_MAX) return;  // no dynamic body: the energy is all in kinematic motion
   const Body& b = w.bodies[named];
-  Incident incident{b.uid, b.name, w.step_count, w.clock.t - w.dt, ""};
+  Incident incident{b.uid, b.name, w.step_count, w.clock.t - ctx.dt, ""};
   incident.frozen = false;
   incident.cause = "the energy grew by " + formatNumber(e.excess) +
                    " J more than forces, motors and kinematic bodies put in, past the bound of " + formatNumber(kBlowUpFactor * allowed) +

@@ -36,6 +36,8 @@
 
 namespace rigidlab {
 
+struct StepContext;  // step_context.h
+
 struct WorldImpl;
 
 struct EnergyWatch {
@@ -64,6 +66,6 @@ struct EnergyWatch {
 };
 
 void beginEnergyWatch(WorldImpl& w);  // before the step's first stage
-void endEnergyWatch(WorldImpl& w);    // after its last
+void endEnergyWatch(WorldImpl& w, const StepContext& ctx);    // after its last
 
 }  // namespace rigidlab

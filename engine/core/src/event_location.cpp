@@ -387,10 +387,11 @@ class Timeline {
 
 }  // namespace
 
-void integrate(WorldImpl& w, double dt) {
+void integrate(WorldImpl& w, const StepContext& ctx) {
+  const double dt = ctx.dt;
   beginIntegration(w);
   chooseLocatedBodies(w);
-  chooseMechanisms(w);
+  chooseMechanisms(w, ctx);
   // Scheduled events: the end times of forces that run out inside the step. Without a split the
   // interval is exactly dt (not t_end − t_begin, which rounds differently).
   const double t_begin = w.clock.t, eps = 1e-9 * dt;

@@ -22,9 +22,25 @@
 
 namespace rigidlab {
 
-bool implicitVelocityChange(WorldImpl& w, double t0, double h, bool stiffness, const char* only) {
+// The implicit solve's scratch (WorldImpl::implicit holds it, opaque to the other stages), written
+// in each call before it is read.
+struct ImplicitScratch {
+  std::vector<int> row;     // per slot: row of the body in the system, −1 if not an unknown
+  struct Block {
+    int row, col;
+    Eigen::Matrix3d a;      // −h D − s h² K
+    Eigen::Matrix3d kv;     // s h² K (multiplies v₀ on the right-hand side)
+  };
+  std::vector<Block> blocks;
+  std::vector<Eigen::Vector3d> mass, v0;
+  std::vector<Eigen::Matrix3d> diag;
+  std::vector<char> has_block;
+  Eigen::VectorXd rhs, dv;  // h Q₀ (+ s h² K v₀), and the solution Δv (3 per row)
+};
+
+bool implicitVelocityChange(WorldImpl& w, double t0, double h, bool stiffness, const char* only, ImplicitVelocities& out) {
   const uint32_t n = static_cast<uint32_t>(w.bodies.size());
-  auto& s = w.implicit;
+  auto& s = w.implicit.get();
   s.row.assign(n, -1);
   int rows = 0;
   for (uint32_t i = 0; i < n; ++i)
@@ -100,6 +116,7 @@ bool implicitVelocityChange(WorldImpl& w, double t0, double h, bool stiffness, c
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(a);
     s.dv = solver.solve(s.rhs);
   }
+  out = {s.row.data(), s.dv.data()};
   return true;
 }
 

@@ -32,6 +32,20 @@
 #include "world_impl.h"
 
 namespace rigidlab {
+
+// The integrator's scratch (WorldImpl::integrator holds it, opaque to the other stages), written in
+// each interval before it is read.
+struct IntegratorScratch {
+  // RK4's: the staged bodies' state at the interval's start and the weighted sum of the stages'
+  // derivatives.
+  std::vector<Vec2> c0, v0, dc, dv;
+  std::vector<double> a0, w0, da, dw;
+  struct DampingSum {  // a body's Force::dampingRate summed over its forces
+    double linear = 0.0, angular = 0.0;
+  };
+  std::vector<DampingSum> damping_sum;  // per slot (dampingTooStiffForRk4)
+};
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -92,8 +106,8 @@ bool isMoving(const WorldImpl& w, uint32_t i, const char* only) { return w.isAct
 // h·c_ω/I > 2.5 in this interval.
 bool dampingTooStiffForRk4(WorldImpl& w, double t0, double h, const char* only) {
   constexpr double kLimit = 2.5;
-  auto& rate = w.damping_sum;
-  rate.assign(w.bodies.size(), WorldImpl::DampingSum{});
+  auto& rate = w.integrator.get().damping_sum;
+  rate.assign(w.bodies.size(), IntegratorScratch::DampingSum{});
   bool any = false;
   for (const ForceEntry& f : w.forces) {
     if (!isActive(f, t0) || !selected(f, only)) continue;
@@ -209,7 +223,8 @@ void integrateStep(WorldImpl& w, double t0, double h, const char* only) {
       // Damping (and for implicit_euler stiffness) of springs and dampers is linearly implicit
       // (implicit_solve.cpp); without such forces Δv = h a(t_n, y_n), and without any force nothing
       // to linearise (no pass over the bodies to look).
-      const bool implicit = any_force && implicitVelocityChange(w, t0, h, method == Integrator::ImplicitEuler, only);
+      ImplicitVelocities change;
+      const bool implicit = any_force && implicitVelocityChange(w, t0, h, method == Integrator::ImplicitEuler, only, change);
       for (uint32_t i = 0; i < n; ++i) {
         if (!isMoving(w, i, only) || stiff(i)) continue;
         Body& b = w.bodies[i];
@@ -217,9 +232,9 @@ void integrateStep(WorldImpl& w, double t0, double h, const char* only) {
         Vec2 dv;
         double dw;
         if (implicit) {
-          const int r = w.implicit.row[i];
-          dv = Vec2(w.implicit.dv[3 * r], w.implicit.dv[3 * r + 1]);
-          dw = b.fixed_rotation ? 0.0 : w.implicit.dv[3 * r + 2];  // the solve treats the angle as free
+          const int r = change.row[i];
+          dv = Vec2(change.dv[3 * r], change.dv[3 * r + 1]);
+          dw = b.fixed_rotation ? 0.0 : change.dv[3 * r + 2];  // the solve treats the angle as free
         } else {
           const Accel acc = accelerationOf(w, i, w.wrenches[i]);
           dv = h * acc.a;
@@ -252,7 +267,7 @@ void integrateStep(WorldImpl& w, double t0, double h, const char* only) {
         b.angular_velocity += h * acc.alpha;
       }
       if (!any_staged) break;
-      auto& s = w.rk4;
+      auto& s = w.integrator.get();
       for (uint32_t i = 0; i < n; ++i) {
         if (!isMoving(w, i, only) || !staged(i)) continue;
         const Body& b = w.bodies[i];
@@ -352,8 +367,9 @@ void beginIntegration(WorldImpl& w) {
   w.start_center.resize(n);
   w.start_angle.resize(n);
   w.force_fault.assign(n, -1);
-  for (auto* v : {&w.rk4.c0, &w.rk4.v0, &w.rk4.dc, &w.rk4.dv}) v->resize(n);
-  for (auto* v : {&w.rk4.a0, &w.rk4.w0, &w.rk4.da, &w.rk4.dw}) v->resize(n);
+  IntegratorScratch& rk4 = w.integrator.get();
+  for (auto* v : {&rk4.c0, &rk4.v0, &rk4.dc, &rk4.dv}) v->resize(n);
+  for (auto* v : {&rk4.a0, &rk4.w0, &rk4.da, &rk4.dw}) v->resize(n);
   for (size_t i = 0; i < n; ++i) {
     w.start_velocity[i] = w.bodies[i].velocity;
     w.start_angular_velocity[i] = w.bodies[i].angular_velocity;

@@ -85,7 +85,7 @@ void moveJointBody(WorldImpl& w, uint32_t slot, const Vec2& dc, double d_angle) 
   w.joint_displaced[slot] = kMoved;
 }
 
-void correctJointPositions(WorldImpl& w) {
+void correctJointPositions(WorldImpl& w, double dt, const std::vector<double>& displaced) {
   if (w.si_joints.empty()) return;
   // The joints' bodies move by the displacement their joint impulses would have caused during the
   // step, as a persisting contact's do (position_correction.cpp): κ h Δv, κ the integrator's
@@ -98,10 +98,10 @@ void correctJointPositions(WorldImpl& w) {
     for (uint32_t slot : {j.a, j.b, j.c, j.d}) {
       if (slot == kWorldSlot || done[slot] || !w.isActive(slot)) continue;
       done[slot] = kDisplaced;
-      if (!w.solved.empty() && slot < w.overlap_weight.size() && w.overlap_weight[slot] > 0.0) continue;
+      if (slot < displaced.size() && displaced[slot] > 0.0) continue;
       const Body& b = w.bodies[slot];
-      moveJointBody(w, slot, kappa * w.dt * (b.velocity - w.solve_start_velocity[slot]),
-                    kappa * w.dt * (b.angular_velocity - w.solve_start_angular_velocity[slot]));
+      moveJointBody(w, slot, kappa * dt * (b.velocity - w.solve_start_velocity[slot]),
+                    kappa * dt * (b.angular_velocity - w.solve_start_angular_velocity[slot]));
     }
   }
   int newton = directJointPositions(w);

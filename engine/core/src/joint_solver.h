@@ -46,8 +46,10 @@ struct JointViews {
 
 // Sequential impulses' position pass over its joints (position_correction.cpp): the direct solve
 // (Newton's method) of the joints' equality rows, then nonlinear Gauss–Seidel with the joints' own
-// solve in position mode for their limits (joint.h).
-void correctJointPositions(WorldImpl& w);
+// solve in position mode for their limits (joint.h). `displaced`: per body slot, Σ P of the contact
+// points that displaced the body this step (position_correction.cpp applyContactDisplacement), empty
+// when none did; those bodies have had their displacement.
+void correctJointPositions(WorldImpl& w, double dt, const std::vector<double>& displaced);
 
 // The joint's body i (0 to 3: a, b, c, d) as the position pass sees it: no velocity, its
 // displacement and rotation since the joint was prepared, its inverse masses (0 if it is still:

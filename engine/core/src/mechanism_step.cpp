@@ -114,11 +114,11 @@ double jointSpringRate(const JointDef& d) {
 // rope measures a distance, whose direction turns over where the length passes zero: a side that
 // could reach zero within the step (twice the step's travel at its rate, or 1 mm) leaves the island
 // to the contact solvers, as a distance joint of zero length does (a pin without an angle).
-bool modelled(const WorldImpl& w, const Joint& j) {
+bool modelled(const WorldImpl& w, const Joint& j, double dt) {
   const JointDef& d = j.def;
   // A spring too stiff for the explicit integrator even in kMaxMechanismSteps steps: the contact
   // solvers' soft constraints take it (implicit, stable at any stiffness).
-  if (jointSpringRate(d) * w.dt > kMaxMechanismSteps * kMechanismTurn) return false;
+  if (jointSpringRate(d) * dt > kMaxMechanismSteps * kMechanismTurn) return false;
   const auto anchor = [&](uint32_t slot, const Vec2& local, Vec2& velocity) {
     if (slot == kWorldSlot) {
       velocity = Vec2::Zero();
@@ -132,7 +132,7 @@ bool modelled(const WorldImpl& w, const Joint& j) {
   const auto clear = [&](const Vec2& p, const Vec2& v, const Vec2& ground) {
     const Vec2 d = p - ground;
     const double length = d.norm(), rate = length > 0.0 ? d.dot(v) / length : 0.0;
-    return length > std::max(1e-3, 2.0 * std::abs(rate) * w.dt);
+    return length > std::max(1e-3, 2.0 * std::abs(rate) * dt);
   };
   switch (d.type) {
     case JointType::Revolute:
@@ -447,15 +447,15 @@ void project(WorldImpl& w, MechanismStage& m, MechanismStage::Exact& e, double t
 
 }  // namespace
 
-void chooseMechanisms(WorldImpl& w) {
+void chooseMechanisms(WorldImpl& w, const StepContext& ctx) {
   MechanismStage& m = w.mechanisms.get();
   for (size_t q = 0; q < m.count; ++q)
     for (uint32_t k = 0; k < m.islands[q].island.moving; ++k) m.moving[m.islands[q].slots[k]] = 0;
   m.count = 0;
   m.step_start = w.clock.t;
-  m.dt = w.dt;
+  m.dt = ctx.dt;
   m.settled.assign(w.joints.size(), 0);
-  if (!w.def.exact_joints) return;
+  if (!ctx.settings.exact_joints) return;
   bool any = false;
   for (const Joint& j : w.joints) any |= j.alive;
   if (!any) return;
@@ -500,7 +500,7 @@ void chooseMechanisms(WorldImpl& w) {
       if (active(s) && first == kWorldSlot) first = s;
     if (first == kWorldSlot) continue;
     const uint32_t r = root(parent, first);
-    if (!modelled(w, j)) m.unsupported[r] |= 1;
+    if (!modelled(w, j, ctx.dt)) m.unsupported[r] |= 1;
     ++m.loops[r];
     if (grounded && !(m.unsupported[r] & 2)) {  // the ground joins the island once
       --m.loops[r];
@@ -587,7 +587,7 @@ void chooseMechanisms(WorldImpl& w) {
       const uint32_t slot = e.slots[k];
       if (m.holds[slot] >= 2) e.stiffness = std::max(e.stiffness, std::sqrt(m.held[slot] * w.bodies[slot].inv_inertia));
     }
-    if (e.stiffness * w.dt > kStiffTurns) {
+    if (e.stiffness * ctx.dt > kStiffTurns) {
       e.stiff = true;
       for (uint32_t k = 0; k < e.island.moving; ++k) m.moving[e.slots[k]] = kStiffMechanism;
     }
@@ -767,7 +767,7 @@ void projectMechanisms(WorldImpl& w, double t_end) {
   for (size_t q = 0; q < m.count; ++q) project(w, m, m.islands[q], t_end);
 }
 
-void settleMechanisms(WorldImpl& w) {
+void settleMechanisms(WorldImpl& w, const StepContext& ctx) {
   MechanismStage* m = w.mechanisms.find();
   if (!m || m->count == 0) return;
   // Islands that touch something now (a contact the narrow phase found, not disabled by pre-solve;
@@ -793,7 +793,7 @@ void settleMechanisms(WorldImpl& w) {
         continue;
       }
       m->settled[k] = 1;
-      j.impulse_h = w.dt;
+      j.impulse_h = ctx.dt;
       reactionFrame(w, j);
     }
   }
@@ -812,7 +812,7 @@ int exactJointCount(const WorldImpl& w) {
   return count;
 }
 
-void finishMechanisms(WorldImpl& w) {
+void finishMechanisms(WorldImpl& w, const StepContext& ctx) {
   MechanismStage* m = w.mechanisms.find();
   if (!m) return;
   // A joined island's joints: the contact solver's impulses (over its impulse_h) plus the exact
@@ -823,7 +823,7 @@ void finishMechanisms(WorldImpl& w) {
     for (uint32_t k : e.joints) {
       Joint& j = w.joints[k];
       if (!j.alive) continue;
-      const double s = j.impulse_h > 0.0 ? j.impulse_h / w.dt : 1.0;
+      const double s = j.impulse_h > 0.0 ? j.impulse_h / ctx.dt : 1.0;
       const JointImpulses& x = m->kept[k];
       JointImpulses& p = j.impulses;
       p.linear_x += s * x.linear_x;
@@ -835,7 +835,7 @@ void finishMechanisms(WorldImpl& w) {
       p.motor += s * x.motor;
       p.lower += s * x.lower;
       p.upper += s * x.upper;
-      if (j.impulse_h <= 0.0) j.impulse_h = w.dt;
+      if (j.impulse_h <= 0.0) j.impulse_h = ctx.dt;
     }
   }
 }

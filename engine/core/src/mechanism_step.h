@@ -13,6 +13,7 @@
 #include <cstdint>
 
 #include "rigidlab/world.h"
+#include "step_context.h"
 
 namespace rigidlab {
 
@@ -23,7 +24,7 @@ struct WorldImpl;
 // a hundred times the soft step's. Linkages (a four-bar: 1 loop, a Theo Jansen leg: 5), chains and
 // trees (none) are far below it.
 constexpr int kMaxMechanismLoops = 64;
-void chooseMechanisms(WorldImpl& w);
+void chooseMechanisms(WorldImpl& w, const StepContext& ctx);
 // Per body slot: kStagedMechanism or kStiffMechanism for a moving body of an exact island this
 // step, else 0; nullptr when there is none.
 //   staged  the joints' forces at every stage of the integrator (addMechanismForces): the
@@ -71,9 +72,9 @@ void restoreMechanismAttempt(WorldImpl& w);
 bool stiffenDriftingMechanisms(WorldImpl& w);     // those islands become stiff; false: none was left to
 void addMechanismForces(WorldImpl& w, double t, double weight, double h, bool staged_damping);
 void projectMechanisms(WorldImpl& w, double t_end);
-void settleMechanisms(WorldImpl& w);
+void settleMechanisms(WorldImpl& w, const StepContext& ctx);
 bool mechanismSettled(const WorldImpl& w, uint32_t joint);
-void finishMechanisms(WorldImpl& w);
+void finishMechanisms(WorldImpl& w, const StepContext& ctx);
 int exactJointCount(const WorldImpl& w);  // joints settled this step
 
 }  // namespace rigidlab

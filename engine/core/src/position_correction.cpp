@@ -46,13 +46,25 @@
 #include "world_impl.h"
 
 namespace rigidlab {
+
+// Position correction's scratch (WorldImpl::position_correction holds it, opaque to the other
+// stages), written in each step before it is read.
+struct PositionCorrectionScratch {
+  std::vector<double> overlap_time;    // per slot: Σ P τ over its contact points (applyContactDisplacement)
+  std::vector<double> overlap_weight;  // per slot: Σ P
+  std::vector<Vec2> start;             // per slot: centre before position correction
+  std::vector<double> start_angle;
+  std::vector<uint32_t> carrier;       // per slot: the jumping kinematic body it presses most
+  std::vector<double> carrier_weight;  // per slot: Σ P of its contacts with that body
+};
+
 namespace {
 
 // Inverse masses as the correction sees them: a sleeping body does not move.
 double invMass(const WorldImpl& w, uint32_t i) { return w.isActive(i) ? w.bodies[i].inv_mass : 0.0; }
 double invInertia(const WorldImpl& w, uint32_t i) { return w.isActive(i) ? w.bodies[i].inv_inertia : 0.0; }
 
-void linearProjection(WorldImpl& w) {
+void linearProjection(WorldImpl& w, const PositionCorrectionScratch& own) {
   for (uint32_t k : w.solved) {
     const Contact& c = w.contacts[k];
     Body& a = w.bodies[c.a];
@@ -64,7 +76,7 @@ void linearProjection(WorldImpl& w) {
     for (int i = 0; i < c.count; ++i) deepest = std::min(deepest, c.points[i].separation);
     // Subtract what this stage already moved the pair apart along the normal (the contact
     // displacement and earlier contacts), so no overlap is removed twice.
-    const double moved = (b.center - w.correction_start[c.b] - (a.center - w.correction_start[c.a])).dot(c.normal);
+    const double moved = (b.center - own.start[c.b] - (a.center - own.start[c.a])).dot(c.normal);
     const double depth = -deepest - moved;
     if (depth <= 0.0) continue;
     a.center -= c.normal * (depth * ima / inv_sum);
@@ -129,15 +141,15 @@ void nonlinearGaussSeidel(WorldImpl& w) {
 // s = clamp(Δv·ΔV / |ΔV|², 0, 1) (1 when held by static friction, less when it slides):
 //   Δc = τ Δv + (h − τ) s ΔV,   Δθ = τ Δω + (h − τ) s Δω_k
 // The carrier is the jumping kinematic body the body presses hardest (Σ P of their contact points).
-void applyContactDisplacement(WorldImpl& w) {
+void applyContactDisplacement(WorldImpl& w, PositionCorrectionScratch& own, double dt) {
   const size_t n = w.bodies.size();
   // Impulse-weighted overlap time per body.
-  w.overlap_time.assign(n, 0.0);
-  w.overlap_weight.assign(n, 0.0);
+  own.overlap_time.assign(n, 0.0);
+  own.overlap_weight.assign(n, 0.0);
   const bool carrying = w.kinematic_jumped && w.kinematic_uid.size() == n;
   if (carrying) {
-    w.carrier.assign(n, UINT32_MAX);
-    w.carrier_weight.assign(n, 0.0);
+    own.carrier.assign(n, UINT32_MAX);
+    own.carrier_weight.assign(n, 0.0);
   }
   const auto jumped = [&](uint32_t k) {
     const Body& b = w.bodies[k];
@@ -151,62 +163,65 @@ void applyContactDisplacement(WorldImpl& w) {
     for (int i = 0; i < c.count; ++i) {
       const double p = c.points[i].normal_impulse;
       total += p;
-      w.overlap_time[c.a] += p * prepared.overlap_time[i];
-      w.overlap_time[c.b] += p * prepared.overlap_time[i];
-      w.overlap_weight[c.a] += p;
-      w.overlap_weight[c.b] += p;
+      own.overlap_time[c.a] += p * prepared.overlap_time[i];
+      own.overlap_time[c.b] += p * prepared.overlap_time[i];
+      own.overlap_weight[c.a] += p;
+      own.overlap_weight[c.b] += p;
     }
     if (!carrying) continue;
     for (auto [carried, by] : {std::pair{c.a, c.b}, std::pair{c.b, c.a}}) {
-      if (total > w.carrier_weight[carried] && jumped(by)) {
-        w.carrier_weight[carried] = total;
-        w.carrier[carried] = by;
+      if (total > own.carrier_weight[carried] && jumped(by)) {
+        own.carrier_weight[carried] = total;
+        own.carrier[carried] = by;
       }
     }
   }
   for (size_t i = 0; i < n; ++i) {
-    if (!w.alive[i] || w.overlap_weight[i] <= 0.0) continue;
+    if (!w.alive[i] || own.overlap_weight[i] <= 0.0) continue;
     Body& b = w.bodies[i];
     if (!w.isActive(static_cast<uint32_t>(i))) continue;
-    const double tau = w.overlap_time[i] / w.overlap_weight[i];
+    const double tau = own.overlap_time[i] / own.overlap_weight[i];
     const Vec2 dv = b.velocity - w.solve_start_velocity[i];
     const double dw = b.angular_velocity - w.solve_start_angular_velocity[i];
     const Vec2 center = b.center;
     b.center += tau * dv;
     b.angle += tau * dw;
-    if (!carrying || w.carrier[i] == UINT32_MAX || tau >= w.dt) continue;
-    const uint32_t k = w.carrier[i];
+    if (!carrying || own.carrier[i] == UINT32_MAX || tau >= dt) continue;
+    const uint32_t k = own.carrier[i];
     const Vec2 jump = w.kinematic_jump[k] + cross(w.kinematic_angular_jump[k], center - w.bodies[k].center);
     const double size = jump.squaredNorm();
     if (!(size > 0.0)) continue;
     const double s = std::clamp(dv.dot(jump) / size, 0.0, 1.0);
-    b.center += ((w.dt - tau) * s) * jump;
-    b.angle += ((w.dt - tau) * s) * w.kinematic_angular_jump[k];
+    b.center += ((dt - tau) * s) * jump;
+    b.angle += ((dt - tau) * s) * w.kinematic_angular_jump[k];
   }
 }
 
 }  // namespace
 
-void correctPositions(WorldImpl& w) {
+void correctPositions(WorldImpl& w, const StepContext& ctx) {
+  PositionCorrectionScratch& own = w.position_correction.get();
   const size_t n = w.bodies.size();
-  w.correction_start.resize(n);
-  w.correction_start_angle.resize(n);
+  own.start.resize(n);
+  own.start_angle.resize(n);
   for (size_t i = 0; i < n; ++i) {
-    w.correction_start[i] = w.bodies[i].center;
-    w.correction_start_angle[i] = w.bodies[i].angle;
+    own.start[i] = w.bodies[i].center;
+    own.start_angle[i] = w.bodies[i].angle;
   }
+  const std::vector<double> none;  // no contact displaced a body this step
   if (w.solved.empty()) {  // no contacts, or all of them solved by the soft step
-    correctJointPositions(w);
+    correctJointPositions(w, ctx.dt, none);
     return;
   }
-  if (w.def.contact_displacement) applyContactDisplacement(w);
-  switch (w.def.position_correction) {
+  const bool displaced = ctx.settings.contact_displacement;
+  if (displaced) applyContactDisplacement(w, own, ctx.dt);
+  switch (ctx.settings.position_correction) {
     case PositionCorrection::LinearProjection:
-      linearProjection(w);
+      linearProjection(w, own);
       break;
     case PositionCorrection::NonlinearGaussSeidel:
       for (size_t i = 0; i < n; ++i)  // the pass reads the transforms the displacement moved
-        if (w.alive[i] && (w.bodies[i].center != w.correction_start[i] || w.bodies[i].angle != w.correction_start_angle[i]))
+        if (w.alive[i] && (w.bodies[i].center != own.start[i] || w.bodies[i].angle != own.start_angle[i]))
           WorldImpl::syncTransform(w.bodies[i]);
       nonlinearGaussSeidel(w);
       exactContactPositions(w);
@@ -214,10 +229,10 @@ void correctPositions(WorldImpl& w) {
   }
   for (size_t i = 0; i < n; ++i) {
     const Body& b = w.bodies[i];
-    if (w.alive[i] && (b.center != w.correction_start[i] || b.angle != w.correction_start_angle[i]))
+    if (w.alive[i] && (b.center != own.start[i] || b.angle != own.start_angle[i]))
       WorldImpl::syncTransform(w.bodies[i]);
   }
-  correctJointPositions(w);  // the joints' errors, at the positions the contacts were corrected to
+  correctJointPositions(w, ctx.dt, displaced ? own.overlap_weight : none);  // the joints' errors, at the positions the contacts were corrected to
 }
 
 }  // namespace rigidlab

@@ -58,10 +58,10 @@ void WorldImpl::wakeIsland(uint32_t slot) {
   for (uint32_t k = island_first[id]; k < island_first[id + 1]; ++k) wake(island_members[k]);
 }
 
-void updateSleep(WorldImpl& w) {
+void updateSleep(WorldImpl& w, const StepContext& ctx) {
   const uint32_t n = static_cast<uint32_t>(w.bodies.size());
-  const double dt = w.dt;
-  if (!w.def.sleeping) {
+  const double dt = ctx.dt;
+  if (!ctx.settings.sleeping) {
     // Nothing sleeps: no islands to find (pay for what you use). Bodies put to sleep before
     // sleeping was switched off wake; sleep times restart once it is switched on again.
     for (uint32_t i = 0; i < n; ++i) {
@@ -79,13 +79,13 @@ void updateSleep(WorldImpl& w) {
     w.keep_awake[f.a.index] = 1;
     if (!f.b.isNull()) w.keep_awake[f.b.index] = 1;
   }
-  const double v2 = w.def.sleep_linear_speed * w.def.sleep_linear_speed;
+  const double v2 = ctx.settings.sleep_linear_speed * ctx.settings.sleep_linear_speed;
   bool kinematic = false;  // some kinematic body moves: what it touches stays awake
   for (uint32_t i = 0; i < n; ++i) {
     Body& b = w.bodies[i];
     kinematic |= w.isMovingKinematic(i);
     if (!w.isActive(i)) continue;
-    const bool still = b.velocity.squaredNorm() <= v2 && std::abs(b.angular_velocity) <= w.def.sleep_angular_speed;
+    const bool still = b.velocity.squaredNorm() <= v2 && std::abs(b.angular_velocity) <= ctx.settings.sleep_angular_speed;
     // A body not allowed to sleep (BodyDef::sleeping_allowed) keeps its sleep time at zero, and so
     // its island awake.
     b.sleep_time = still && !w.keep_awake[i] && b.sleeping_allowed ? b.sleep_time + dt : 0.0;
@@ -131,7 +131,7 @@ void updateSleep(WorldImpl& w) {
     if (!w.alive[i] || !w.bodies[i].isDynamic() || !w.bodies[i].enabled) continue;
     Body& b = w.bodies[i];
     const double t = w.island_sleep[w.island[i]];
-    if (w.def.sleeping && t >= w.def.time_to_sleep) {
+    if (ctx.settings.sleeping && t >= ctx.settings.time_to_sleep) {
       if (b.awake) {
         b.awake = false;
         b.velocity = Vec2::Zero();

@@ -758,7 +758,7 @@ void io(A& a, WorldImpl& w) {
   io(a, w.joint_breaks);
   a(w.clock.t);
   a(w.clock.carry);
-  a(w.dt);
+  a(w.last_dt);
   a(w.step_count);
   io(a, w.created_asleep_before);
   a(w.next_uid);

@@ -63,6 +63,42 @@
 #include "world_impl.h"
 
 namespace rigidlab {
+
+// The soft step's scratch (WorldImpl::soft_step holds it, opaque to the other stages). Nothing in
+// it is simulation state: every field is written before it is read in each step, except the
+// colouring kept between steps (graph_*, slot, source, color_first, lanes' serial flags), which is
+// a cache: a function of this step's contacts and moving bodies (sameGraph), so a copy of the world
+// (World::snapshot), which starts without this scratch, colours again and gets the same groups
+// (RIGIDLAB_VERIFY_CACHES builds check it).
+struct SoftStepScratch {
+  std::vector<SoftBody> bodies;
+  std::vector<SoftLanes> lanes;
+  std::vector<SoftTally> tally;      // per lane of lanes
+  std::vector<SoftTotals> totals;    // per group of lanes
+  std::vector<SoftSurfaceLanes> surfaces;  // per group of lanes when some has surface effects, else empty
+  std::vector<uint32_t> source;      // per lane: index into contacts, or UINT32_MAX if empty
+  std::vector<uint32_t> slot;        // per soft contact: its lane (group · L + lane)
+  std::vector<uint32_t> colors_used; // per slot: colours of the contacts that move the body
+  std::vector<uint8_t> color;        // per soft contact
+  std::vector<uint32_t> color_order; // the soft contacts in the order they are coloured
+  std::vector<uint8_t> color_bucket; // per soft contact: its place in that order (hash bucket)
+  std::vector<uint32_t> color_first; // per colour, then the serial groups, then the end: first group
+  std::vector<SoftKick> kick;        // per slot: velocity the step's forces add per sub-step
+  std::vector<SoftKick> warm;        // per slot: the next sub-step's warm start
+  std::vector<double> angle;         // per slot: angle minus the angle at detection
+  std::vector<char> moved;           // per slot: 1 in contact and awake, 2 if also pushed
+  std::vector<uint32_t> list;        // the slots with moved ≠ 0
+  std::vector<JointBodies> joint_bodies;  // per entry of WorldImpl::soft_joints: its bodies' SoftBody
+  // What the last colouring was made from (sameGraph): each soft contact's bodies, and moved;
+  // graph_valid is false until the first colouring.
+  struct GraphPair {
+    uint32_t a, b;
+  };
+  std::vector<GraphPair> graph_pairs;
+  std::vector<char> graph_moved;
+  bool graph_valid = false;
+};
+
 namespace {
 
 constexpr int L = kSoftLanes;
@@ -688,9 +724,10 @@ inline uint64_t mixPair(uint32_t a, uint32_t b) {
 // few per cent, the deepest contact and largest overlap by up to about 20 %, either way
 // (docs/performance.md).
 void colouringOrder(WorldImpl& w) {
+  SoftStepScratch& own = w.soft_step.get();
   const size_t n = w.soft_solved.size();
-  auto& bucket = w.soft_color_bucket;
-  auto& order = w.soft_color_order;
+  auto& bucket = own.color_bucket;
+  auto& order = own.color_order;
   bucket.resize(n);
   order.resize(n);
   uint32_t first[257] = {};
@@ -708,15 +745,16 @@ void colouringOrder(WorldImpl& w) {
 // Only the lanes' contact indices are written again. Checked pair by pair, stopping at the first
 // difference, so a scene whose contacts change pays little for the check.
 bool sameGraph(WorldImpl& w) {
-  auto& last = w.soft_graph_pairs;
+  SoftStepScratch& own = w.soft_step.get();
+  auto& last = own.graph_pairs;
   const auto& refs = w.soft_refs;
-  bool same = w.soft_graph_valid && last.size() == refs.size() && w.soft_graph_moved == w.soft_moved;
+  bool same = own.graph_valid && last.size() == refs.size() && own.graph_moved == own.moved;
   for (size_t k = 0; same && k < refs.size(); ++k) same = last[k].a == refs[k].a && last[k].b == refs[k].b;
   if (same) return true;
   last.resize(refs.size());
   for (size_t k = 0; k < refs.size(); ++k) last[k] = {refs[k].a, refs[k].b};
-  w.soft_graph_moved = w.soft_moved;
-  w.soft_graph_valid = true;
+  own.graph_moved = own.moved;
+  own.graph_valid = true;
   return false;
 }
 
@@ -725,16 +763,17 @@ bool sameGraph(WorldImpl& w) {
 // packs each colour into groups of L lanes, in the contacts' (a, b) order within a colour. Contacts
 // that find no free colour among kColors (a body touching dozens of others) go to serial groups.
 void colourGroups(WorldImpl& w) {
+  SoftStepScratch& own = w.soft_step.get();
   constexpr int kColors = 32;
   const auto& solved = w.soft_solved;
-  const auto& moved = w.soft_moved;
-  auto& used = w.soft_colors_used;
+  const auto& moved = own.moved;
+  auto& used = own.colors_used;
   used.assign(w.bodies.size(), 0u);
-  auto& color = w.soft_color;
+  auto& color = own.color;
   color.resize(solved.size());
   colouringOrder(w);
   int count[kColors + 1] = {};
-  for (const uint32_t k : w.soft_color_order) {
+  for (const uint32_t k : own.color_order) {
     const SolvedRef& c = w.soft_refs[k];
     const uint32_t busy = (moved[c.a] ? used[c.a] : 0u) | (moved[c.b] ? used[c.b] : 0u);
     const int free = busy == ~0u ? kColors : std::countr_one(busy);  // lowest colour not busy
@@ -749,8 +788,8 @@ void colourGroups(WorldImpl& w) {
   int first[kColors + 2];
   first[0] = 0;
   for (int c = 0; c <= kColors; ++c) first[c + 1] = first[c] + (count[c] + L - 1) / L * L;
-  auto& source = w.soft_source;
-  auto& slot = w.soft_slot;
+  auto& source = own.source;
+  auto& slot = own.slot;
   source.assign(static_cast<size_t>(first[kColors + 1]), UINT32_MAX);
   slot.resize(solved.size());
   int next[kColors + 1];
@@ -759,26 +798,27 @@ void colourGroups(WorldImpl& w) {
     slot[k] = static_cast<uint32_t>(next[color[k]]++);
     source[slot[k]] = solved[k];
   }
-  w.soft_lanes.resize(source.size() / L);
-  for (size_t g = 0; g < w.soft_lanes.size(); ++g) w.soft_lanes[g].serial = static_cast<int>(g * L) >= first[kColors];
+  own.lanes.resize(source.size() / L);
+  for (size_t g = 0; g < own.lanes.size(); ++g) own.lanes[g].serial = static_cast<int>(g * L) >= first[kColors];
   // Each colour's first group, then the serial groups' first, then the end.
-  w.soft_color_first.resize(kColors + 2);
-  for (int c = 0; c <= kColors + 1; ++c) w.soft_color_first[c] = static_cast<uint32_t>(first[c] / L);
+  own.color_first.resize(kColors + 2);
+  for (int c = 0; c <= kColors + 1; ++c) own.color_first[c] = static_cast<uint32_t>(first[c] / L);
 }
 
 // The groups of this step's soft contacts: the last step's colouring when sameGraph says it still
 // holds, a new one otherwise.
 void buildGroups(WorldImpl& w) {
+  SoftStepScratch& own = w.soft_step.get();
   if (!sameGraph(w)) {
     colourGroups(w);
     return;
   }
-  for (size_t k = 0; k < w.soft_solved.size(); ++k) w.soft_source[w.soft_slot[k]] = w.soft_solved[k];
+  for (size_t k = 0; k < w.soft_solved.size(); ++k) own.source[own.slot[k]] = w.soft_solved[k];
 #ifdef RIGIDLAB_VERIFY_CACHES
   // Sanitizer and fuzz builds: the kept colouring must be the one colouring again gives.
-  const std::vector<uint32_t> slot = w.soft_slot, source = w.soft_source, first = w.soft_color_first;
+  const std::vector<uint32_t> slot = own.slot, source = own.source, first = own.color_first;
   colourGroups(w);
-  if (slot != w.soft_slot || source != w.soft_source || first != w.soft_color_first) {
+  if (slot != own.slot || source != own.source || first != own.color_first) {
     std::fprintf(stderr, "rigidlab: the kept colouring of the soft contacts differs from a new one\n");
     std::abort();
   }
@@ -807,14 +847,14 @@ void buildGroups(WorldImpl& w) {
 }
 
 // And for the write-back: the contact's impulses and its lane's.
-[[gnu::always_inline]] inline void prefetchWriteBack(const WorldImpl& w, size_t k, size_t ahead) {
+[[gnu::always_inline]] inline void prefetchWriteBack(const WorldImpl& w, const SoftStepScratch& own, size_t k, size_t ahead) {
   if (k + ahead >= w.soft_solved.size()) return;
   const Contact& c = w.contacts[w.soft_solved[k + ahead]];
   __builtin_prefetch(&c.points[0].normal_impulse, 1);
   __builtin_prefetch(&c.points[0].step_tangent_impulse, 1);
   __builtin_prefetch(&c.points[1].normal_impulse, 1);
   __builtin_prefetch(&c.points[1].step_tangent_impulse, 1);
-  const SoftLanes& sc = w.soft_lanes[w.soft_slot[k + ahead] / L];
+  const SoftLanes& sc = own.lanes[own.slot[k + ahead] / L];
   __builtin_prefetch(&sc.pn[0][0]);
   __builtin_prefetch(&sc.pn[1][3]);
   __builtin_prefetch(&sc.pt[1][3]);
@@ -848,20 +888,21 @@ namespace {
 }
 }  // namespace
 
-void softStep(WorldImpl& w) {
+void softStep(WorldImpl& w, const StepContext& ctx) {
+  SoftStepScratch& own = w.soft_step.get();
   const uint32_t n = static_cast<uint32_t>(w.bodies.size());
-  const int substeps = w.def.substeps;
-  const double h = w.dt / substeps, inv_h = 1.0 / h;
+  const int substeps = ctx.settings.substeps;
+  const double h = ctx.dt / substeps, inv_h = 1.0 / h;
   // The contacts and joints were chosen by solveContacts (contact_solver.cpp).
   if (w.soft_solved.empty() && w.soft_joints.empty()) return;
 
   // Bodies: the moving ones of those contacts go back to the start of the step.
-  auto& bodies = w.soft_bodies;
-  auto& kick = w.soft_kick;
-  auto& warm = w.soft_warm;
-  auto& moved = w.soft_moved;
-  auto& angle = w.soft_angle;
-  auto& list = w.soft_list;
+  auto& bodies = own.bodies;
+  auto& kick = own.kick;
+  auto& warm = own.warm;
+  auto& moved = own.moved;
+  auto& angle = own.angle;
+  auto& list = own.list;
   bodies.resize(n + 1);  // slot n: an immovable body for the empty lanes
   bodies[n] = {0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0};
   kick.resize(n);
@@ -910,18 +951,18 @@ void softStep(WorldImpl& w) {
 
   // Constraints, in groups of L lanes.
   buildGroups(w);
-  const double hertz = std::min(w.def.contact_hertz, 0.125 * inv_h);
-  const Softness soft = makeSoft(hertz, w.def.contact_damping_ratio, h);
-  const Softness stiff = makeSoft(2.0 * hertz, w.def.contact_damping_ratio, h);
-  const Level levels[2] = {levelOf(soft, w.def.contact_push_speed), levelOf(stiff, w.def.contact_push_speed)};
-  auto& groups = w.soft_lanes;
-  auto& tallies = w.soft_tally;
-  const auto& source = w.soft_source;
+  const double hertz = std::min(ctx.settings.contact_hertz, 0.125 * inv_h);
+  const Softness soft = makeSoft(hertz, ctx.settings.contact_damping_ratio, h);
+  const Softness stiff = makeSoft(2.0 * hertz, ctx.settings.contact_damping_ratio, h);
+  const Level levels[2] = {levelOf(soft, ctx.settings.contact_push_speed), levelOf(stiff, ctx.settings.contact_push_speed)};
+  auto& groups = own.lanes;
+  auto& tallies = own.tally;
+  const auto& source = own.source;
   tallies.resize(source.size());
-  auto& totals = w.soft_totals;
+  auto& totals = own.totals;
   totals.assign(groups.size(), SoftTotals{});
   // Surface effects (pre_solve.cpp): lanes for them only when some contact of the step has them.
-  auto& surfaces = w.soft_surfaces;
+  auto& surfaces = own.surfaces;
   surfaces.clear();
   if (!w.contact_surfaces.empty()) surfaces.assign(groups.size(), SoftSurfaceLanes{});
   // Empty lanes and the second point of one-point contacts: neutral, so that the vector code can
@@ -956,8 +997,8 @@ void softStep(WorldImpl& w) {
   const auto prepare = [&](size_t k) {
     prefetchContact(w, k, 8);
     prefetchCenters(w, k, 8);
-    const size_t g = w.soft_slot[k] / L;
-    const int l = static_cast<int>(w.soft_slot[k] % L);
+    const size_t g = own.slot[k] / L;
+    const int l = static_cast<int>(own.slot[k] % L);
     SoftLanes& sc = groups[g];
     {  // one contact
       sc.acted[l] = 0;
@@ -995,9 +1036,9 @@ void softStep(WorldImpl& w) {
         // f_s or f_d from the slip at the start of the step (docs/design/thesis.md §10), against the
         // surface's own motion; the bodies still hold the velocities of the start of the step.
         const double slip = relative(a, b, anchorOf(sc, i, l), tan.x(), tan.y()) - tangent_speed;
-        sc.friction[i][l] = std::abs(slip) < w.def.static_friction_speed ? c.static_friction : c.friction;
-        sc.pn[i][l] = w.def.warm_starting ? cp.normal_impulse : 0.0;
-        sc.pt[i][l] = w.def.warm_starting ? cp.tangent_impulse : 0.0;
+        sc.friction[i][l] = std::abs(slip) < ctx.settings.static_friction_speed ? c.static_friction : c.friction;
+        sc.pn[i][l] = ctx.settings.warm_starting ? cp.normal_impulse : 0.0;
+        sc.pt[i][l] = ctx.settings.warm_starting ? cp.tangent_impulse : 0.0;
         sc.acted[l] |= (sc.pn[i][l] != 0.0) | (sc.pt[i][l] != 0.0);
         if (!sc.bounce[l]) continue;
         t.approach[i] = 0.0;
@@ -1024,7 +1065,7 @@ void softStep(WorldImpl& w) {
   };
   // The first sub-step's warm start: the impulses carried over from the previous step.
   const auto warmStart = [&](size_t k) {
-    const uint32_t at = w.soft_slot[k];
+    const uint32_t at = own.slot[k];
     const SoftLanes& sc = groups[at / L];
     const int l = static_cast<int>(at % L);
     addWarmStart(bodies[sc.a[l]], bodies[sc.b[l]], sc, l, warm[sc.a[l]], warm[sc.b[l]]);
@@ -1057,11 +1098,11 @@ void softStep(WorldImpl& w) {
   JointStep joint_step;
   joint_step.h = h;
   joint_step.inv_h = inv_h;
-  joint_step.soft = makeSoft(std::min(w.def.joint_hertz, 0.25 * inv_h), w.def.joint_damping_ratio, h);
-  joint_step.warm_starting = w.def.warm_starting;
+  joint_step.soft = makeSoft(std::min(ctx.settings.joint_hertz, 0.25 * inv_h), ctx.settings.joint_damping_ratio, h);
+  joint_step.warm_starting = ctx.settings.warm_starting;
   for (uint32_t k : w.soft_joints) prepareJointAt(w, w.joints[k], joint_step);
   // Each joint's bodies, found once for the step's 3 × substeps passes over the joints.
-  auto& joint_bodies = w.soft_joint_bodies;
+  auto& joint_bodies = own.joint_bodies;
   joint_bodies.resize(w.soft_joints.size());
   for (size_t q = 0; q < w.soft_joints.size(); ++q) {
     const Joint& j = w.joints[w.soft_joints[q]];
@@ -1075,7 +1116,7 @@ void softStep(WorldImpl& w) {
   // Sub-steps.
   // A pass: with several threads, colour by colour (the groups of one colour share no moving body,
   // so they are independent), then the serial groups in the caller; in group order otherwise.
-  const auto& color_first = w.soft_color_first;
+  const auto& color_first = own.color_first;
   const auto runPass = [&](auto soft, int step, std::vector<SoftKick>* next) {
     constexpr bool kSoft = decltype(soft)::value;
     if (!pool) {
@@ -1126,15 +1167,15 @@ void softStep(WorldImpl& w) {
   for (size_t g = 0; g < groups.size(); ++g)
     for (int l = 0; l < L; ++l)
       if (groups[g].bounce[l])
-        restitute(bodies, groups[g], l, tallies[g * L + l], totals[g], w.def.restitution_threshold, substeps,
+        restitute(bodies, groups[g], l, tallies[g * L + l], totals[g], ctx.settings.restitution_threshold, substeps,
                   groups[g].surface ? surfaces[g].tangent_speed[l] : 0.0);
 
   // Write back: impulses for warm starting and reports; bodies that some impulse acted on take the
   // sub-stepped state, the others keep the integrator's.
   // Counts and bodies from the lanes: the Contact is written, not read.
   const auto writeBack = [&](size_t k) {
-    prefetchWriteBack(w, k, 8);
-    const uint32_t at = w.soft_slot[k];
+    prefetchWriteBack(w, own, k, 8);
+    const uint32_t at = own.slot[k];
     const SoftLanes& sc = groups[at / L];
     const int l = static_cast<int>(at % L);
     const SoftTotals& t = totals[at / L];
@@ -1148,7 +1189,7 @@ void softStep(WorldImpl& w) {
     }
   };
   const auto markPushed = [&](size_t k) {  // several contacts may mark one body: serially
-    const uint32_t at = w.soft_slot[k];
+    const uint32_t at = own.slot[k];
     const SoftLanes& sc = groups[at / L];
     const int l = static_cast<int>(at % L);
     if (!sc.acted[l]) return;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "rigidlab/world.h"
+#include "step_context.h"
 
 namespace rigidlab {
 
@@ -10,7 +11,7 @@ struct Contact;
 
 // The step's time line (event_location.cpp): every body integrated over the step, split at force
 // end times and, with located impacts, at impacts (docs/design/thesis.md §5, §6).
-void integrate(WorldImpl& w, double dt);
+void integrate(WorldImpl& w, const StepContext& ctx);
 // integrator.cpp: the start-of-step states (WorldImpl::start_*) and scratch; one interval of
 // length h from time t0 with the world's integrator, for the awake dynamic bodies marked in `only`
 // (per slot; nullptr: all of them) and the forces that act on them; kinematic bodies moved by dt.
@@ -24,10 +25,15 @@ void settleLocatedContacts(WorldImpl& w);
 void locatedImpactEvents(WorldImpl& w);
 void guardNonFinite(WorldImpl& w, const char* stage);  // nan_guard.cpp  after integrate and at the end
 void sweepFastBodies(WorldImpl& w);        // continuous.cpp      fast bodies against static ones
-// The linearly implicit Euler velocity change (implicit_solve.cpp) from the forces in w.wrenches,
-// into w.implicit.dv; false (nothing computed) if no active force can be linearised. `only`: as
-// integrateInterval's.
-bool implicitVelocityChange(WorldImpl& w, double t0, double h, bool stiffness, const char* only);
+// The linearly implicit Euler velocity change (implicit_solve.cpp) from the forces in w.wrenches:
+// body slot i's Δv is (dv[3 r], dv[3 r + 1]), its Δω dv[3 r + 2], with r = row[i]; false (nothing
+// computed) if no active force can be linearised. `only`: as integrateInterval's. The arrays are
+// the solve's scratch, valid until its next call.
+struct ImplicitVelocities {
+  const int* row = nullptr;
+  const double* dv = nullptr;
+};
+bool implicitVelocityChange(WorldImpl& w, double t0, double h, bool stiffness, const char* only, ImplicitVelocities& out);
 void findPairs(WorldImpl& w);              // broad_phase.cpp     docs/design/thesis.md §7
 // Keeps the broad phase's pair list between steps (PairCache, broad_phase.h) for this process; on
 // by default. Off rebuilds every step: the same pairs, for tests.
@@ -40,8 +46,8 @@ void contactEnds(WorldImpl& w, const Contact& previous);
 void finishContactEvents(WorldImpl& w);
 void preSolve(WorldImpl& w);               // pre_solve.cpp       one-way platforms, the pre-solve callback
 void updateSensors(WorldImpl& w);          // sensor.cpp          what is in each sensor
-void solveContacts(WorldImpl& w);          // contact_solver.cpp  docs/design/thesis.md §8–10, calls softStep
-void softStep(WorldImpl& w);               // soft_step.cpp       the contacts in w.soft_solved
+void solveContacts(WorldImpl& w, const StepContext& ctx);         // contact_solver.cpp  docs/design/thesis.md §8–10, calls softStep
+void softStep(WorldImpl& w, const StepContext& ctx);         // soft_step.cpp       the contacts in w.soft_solved
 // Chooses the soft step's AVX2 or baseline passes for this process (by default AVX2 where the
 // processor has it); false if AVX2 was asked for and the processor lacks it. For tests.
 bool softStepUseAvx2(bool on);
@@ -51,8 +57,8 @@ void softStepOnePointPass(bool on);
 // κ: the weight an integrator's position update gives to the velocity gained during the step
 // (contact_solver.cpp).
 double restingWeight(Integrator integrator);
-void correctPositions(WorldImpl& w);       // position_correction.cpp  docs/design/thesis.md §9, the contacts in w.solved
-void updateSleep(WorldImpl& w);            // sleep.cpp           islands and sleeping
+void correctPositions(WorldImpl& w, const StepContext& ctx);       // position_correction.cpp  docs/design/thesis.md §9, the contacts in w.solved
+void updateSleep(WorldImpl& w, const StepContext& ctx);         // sleep.cpp           islands and sleeping
 void breakJoints(WorldImpl& w);            // world_joint.cpp     joints over their break force or torque
 void expireForces(WorldImpl& w);           // world.cpp           docs/design/thesis.md §6
 

@@ -18,6 +18,7 @@
 #include "rigidlab/error.h"
 #include "mechanism_step.h"
 #include "stages.h"
+#include "step_context.h"
 #include "world_impl.h"
 
 namespace rigidlab {
@@ -68,13 +69,14 @@ void World::step(double dt) {
     return std::chrono::duration<double, std::milli>(b - a).count();
   };
   w.stats = StepStats{};
-  w.dt = dt;
+  const StepContext ctx{dt, w.def};
+  w.last_dt = dt;
   w.locked = true;
   const size_t incidents_before = w.incidents.size();
   const auto t0 = Clock::now();
   beginEnergyWatch(w);  // the energy at the start: a blow-up is energy from nowhere (energy_watch.h)
   try {
-    integrate(w, dt);  // docs/design/thesis.md §5: all non-contact forces, RK4 stages included; located impacts
+    integrate(w, ctx);  // docs/design/thesis.md §5: all non-contact forces, RK4 stages included; located impacts
   } catch (...) {
     undoStep(w, incidents_before);  // forces run only here
     throw;
@@ -99,11 +101,11 @@ void World::step(double dt) {
     throw;
   }
   const auto t3 = Clock::now();
-  settleMechanisms(w);  // exact mechanisms still touching nothing keep their joints out of the contact solve
-  solveContacts(w);  // docs/design/thesis.md §8–10: contacts and joints; large islands by the soft step
+  settleMechanisms(w, ctx);  // exact mechanisms still touching nothing keep their joints out of the contact solve
+  solveContacts(w, ctx);  // docs/design/thesis.md §8–10: contacts and joints; large islands by the soft step
   const auto t4 = Clock::now();
-  correctPositions(w);  // docs/design/thesis.md §9: penetration and joint errors (the soft step's islands need none)
-  finishMechanisms(w);  // the joints of exact mechanisms that met something: their impulses
+  correctPositions(w, ctx);  // docs/design/thesis.md §9: penetration and joint errors (the soft step's islands need none)
+  finishMechanisms(w, ctx);  // the joints of exact mechanisms that met something: their impulses
   guardNonFinite(w, "the contact solve");
   breakJoints(w);  // joints over their break force or torque go, reported (jointBreaks)
   finishContactEvents(w);  // the events' impulses, now that they are known
@@ -111,9 +113,9 @@ void World::step(double dt) {
   const auto t5 = Clock::now();
   w.clock.advance(dt);
   ++w.layout_version;
-  updateSleep(w);  // islands whose bodies stayed still long enough stop being simulated
+  updateSleep(w, ctx);  // islands whose bodies stayed still long enough stop being simulated
   ++w.step_count;
-  endEnergyWatch(w);  // more energy gained than the sources can give: a blow-up incident
+  endEnergyWatch(w, ctx);  // more energy gained than the sources can give: a blow-up incident
   expireForces(w);  // docs/design/thesis.md §6: forces whose time ran out are removed
   w.locked = false;
   const auto t6 = Clock::now();

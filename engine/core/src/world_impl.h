@@ -105,7 +105,12 @@ class StageScratch {
   std::shared_ptr<T> p_;  // shared_ptr: destroyed where T is not known
 };
 
-struct MechanismStage;  // mechanism_step.cpp
+struct MechanismStage;   // mechanism_step.cpp
+struct SoftStepScratch;  // soft_step.cpp
+struct ContactSolverScratch;  // contact_solver.cpp
+struct IntegratorScratch;     // integrator.cpp
+struct ImplicitScratch;       // implicit_solve.cpp
+struct PositionCorrectionScratch;  // position_correction.cpp
 
 struct WorldImpl {
   WorldDef def;
@@ -149,7 +154,10 @@ struct WorldImpl {
   bool jointBlocksCollision(uint32_t a, uint32_t b) const;
 
   SimClock clock;
-  double dt = 0.0;  // of the step in progress [s]
+  // The last step's dt [s]. No stage reads it (they read StepContext::dt, step_context.h); it is
+  // kept only because the saved-world format has carried it since version 1 (snapshot_format.cpp),
+  // so files stay byte for byte what they were.
+  double last_dt = 0.0;
   long step_count = 0;
   // Per body slot: step_count + 1 if the body was created asleep (BodyDef::awake = false) since the
   // last step, else older. Shapes added to such a body before it is stepped do not wake it: the
@@ -175,69 +183,21 @@ struct WorldImpl {
   std::vector<Vec2> start_center;     // per slot: state at the start of the step, to undo a failed step
   std::vector<double> start_angle;
   std::vector<double> breakpoints;    // force expiry times inside the current step
-  struct DampingSum {  // integrator.cpp: a body's Force::dampingRate summed over its forces
-    double linear = 0.0, angular = 0.0;
-  };
-  std::vector<DampingSum> damping_sum;  // per slot
+  StageScratch<IntegratorScratch> integrator;  // RK4's stage sums, the dampers' rates (integrator.cpp)
   std::vector<int32_t> force_fault;   // per slot: index of a force that returned a non-finite value, or −1
-  struct ImplicitScratch {  // implicit_solve.cpp
-    std::vector<int> row;     // per slot: row of the body in the system, −1 if not an unknown
-    struct Block {
-      int row, col;
-      Eigen::Matrix3d a;      // −h D − s h² K
-      Eigen::Matrix3d kv;     // s h² K (multiplies v₀ on the right-hand side)
-    };
-    std::vector<Block> blocks;
-    std::vector<Eigen::Vector3d> mass, v0;
-    std::vector<Eigen::Matrix3d> diag;
-    std::vector<char> has_block;
-    Eigen::VectorXd rhs, dv;  // h Q₀ (+ s h² K v₀), and the solution Δv (3 per row)
-  } implicit;
-  struct Rk4Scratch {
-    std::vector<Vec2> c0, v0, dc, dv;
-    std::vector<double> a0, w0, da, dw;
-  } rk4;
+  StageScratch<ImplicitScratch> implicit;  // the linearly implicit solve's system (implicit_solve.cpp)
   ImpactScratch impact;  // located impacts (impact.h)
   StageScratch<MechanismStage> mechanisms;  // exact mechanisms (mechanism_step.cpp)
 
-  // The contact solver's compact working copies (contact_solver.cpp).
-  std::vector<SolverBody> solver_velocities;
-  std::vector<SolverContact> solver_contacts;
-  std::vector<SolverPrepared> solver_prepared;  // per solved contact
-  std::vector<SolverSurface> solver_surfaces;   // the solved contacts with surface effects (SolverContact::surface)
-  // The soft step's (soft_step.cpp).
-  std::vector<SoftBody> soft_bodies;
-  std::vector<SoftLanes> soft_lanes;
-  std::vector<SoftTally> soft_tally;      // per lane of soft_lanes
-  std::vector<SoftTotals> soft_totals;    // per group of soft_lanes
-  std::vector<SoftSurfaceLanes> soft_surfaces;  // per group of soft_lanes when some has surface effects, else empty
-  std::vector<uint32_t> soft_source;      // per lane: index into contacts, or UINT32_MAX if empty
-  std::vector<uint32_t> soft_slot;        // per soft contact: its lane (group · L + lane)
-  std::vector<uint32_t> soft_colors_used; // per slot: colours of the contacts that move the body
-  std::vector<uint8_t> soft_color;        // per soft contact
-  std::vector<uint32_t> soft_color_order; // the soft contacts in the order they are coloured
-  std::vector<uint8_t> soft_color_bucket; // per soft contact: its place in that order (hash bucket)
-  std::vector<uint32_t> soft_color_first; // per colour, then the serial groups, then the end: first group
-  std::vector<SoftKick> soft_kick;        // per slot: velocity the step's forces add per sub-step
-  std::vector<SoftKick> soft_warm;        // per slot: the next sub-step's warm start
-  std::vector<double> soft_angle;         // per slot: angle minus the angle at detection
-  std::vector<char> soft_moved;           // per slot: 1 in contact and awake, 2 if also pushed
-  std::vector<uint32_t> soft_list;        // the slots with soft_moved ≠ 0
-  std::vector<JointBodies> soft_joint_bodies;  // per entry of soft_joints: its bodies' SoftBody
-  // What the last colouring was made from (soft_step.cpp sameGraph): each soft contact's bodies, and
-  // soft_moved; soft_graph_valid is false until the first colouring.
-  struct GraphPair {
-    uint32_t a, b;
-  };
-  std::vector<GraphPair> soft_graph_pairs;
-  std::vector<char> soft_graph_moved;
-  bool soft_graph_valid = false;
+  StageScratch<ContactSolverScratch> contact_solver;  // the contact solver's working copies (contact_solver.cpp)
+  // Per entry of `solved`: the contact prepared for the solve (contact_solver.cpp), which position
+  // correction reads after it (the points fixed to their bodies, the overlap time): passed from one
+  // stage to the next within a step, so not one stage's scratch.
+  std::vector<SolverPrepared> solver_prepared;
+  StageScratch<SoftStepScratch> soft_step;  // the soft step's (soft_step.cpp)
   std::vector<Vec2> solve_start_velocity;  // per slot: velocity before the contact solve
   std::vector<double> solve_start_angular_velocity;
-  std::vector<double> overlap_time;       // per slot: Σ P τ over its contact points (position_correction)
-  std::vector<double> overlap_weight;     // per slot: Σ P
-  std::vector<Vec2> correction_start;     // per slot: centre before position correction
-  std::vector<double> correction_start_angle;
+  StageScratch<PositionCorrectionScratch> position_correction;  // position_correction.cpp
   // Kinematic bodies' velocity changes between steps (integrator.cpp moveKinematicBodies), which the
   // contact displacement of what they carry takes as impulsive (position_correction.cpp).
   std::vector<Vec2> kinematic_velocity;          // per slot: the velocity it moved with this step
@@ -268,8 +228,6 @@ struct WorldImpl {
     kinematic_angular_velocity[slot] = bodies[slot].angular_velocity;
     kinematic_uid[slot] = bodies[slot].uid;
   }
-  std::vector<uint32_t> carrier;                 // per slot: the jumping kinematic body it presses most
-  std::vector<double> carrier_weight;            // per slot: Σ P of its contacts with that body
 
   BroadPhaseHolder broad_phase;
   std::vector<Proxy> proxies;
@@ -375,7 +333,6 @@ struct WorldImpl {
   std::vector<SolvedRef> solved_refs;      // per entry of solved: its bodies (contact_solver.cpp)
   std::vector<SolvedRef> soft_refs;        // per entry of soft_solved
   std::vector<uint32_t> island_order;      // the solver's constraints grouped by island
-  std::vector<double> island_joint_sizes;  // per constraint of an island: its joint's impulse size (contact_solver.cpp)
   std::vector<Contact> previous_contacts;  // narrow_phase.cpp: last step's contacts moved out of the way
   // narrow_phase.cpp: written in place, the last step's contacts would have had to move out of the
   // way of new ones (contacts begin more than end), so this step writes them anew.
@@ -391,7 +348,6 @@ struct WorldImpl {
   UncopiedFlag island_members_current;
   std::vector<uint32_t> island_parent;  // union–find scratch
   std::vector<char> island_dynamic;     // per slot: alive and not static (sleep.cpp)
-  std::vector<uint32_t> island_points;  // per island root: contact points (contact_solver.cpp)
   // The direct joint solve's islands (joint_direct.cpp): joint indices grouped by island, island i
   // being joint_island_joints[joint_island_start[i] .. joint_island_start[i + 1]).
   std::vector<uint32_t> joint_island_joints, joint_island_start;

@@ -64,8 +64,8 @@ size_t WorldSnapshot::memoryBytes() const {
   for (const auto& o : w.sensor_overlaps) n += bytesOf(o);
   for (const ForceEntry& f : w.forces)
     if (f.force) n += 64;  // a cloned built-in force (SpringForce, the largest, is under 100 bytes)
-  n += bytesOf(w.solver_velocities) + bytesOf(w.solver_contacts) + bytesOf(w.solver_prepared) +
-       bytesOf(w.soft_lanes) + bytesOf(w.shape_views) + bytesOf(w.world_vertices) + bytesOf(w.world_normals) +
+  n += bytesOf(w.solver_prepared) +
+       bytesOf(w.shape_views) + bytesOf(w.world_vertices) + bytesOf(w.world_normals) +
        bytesOf(w.states) + bytesOf(w.wrenches) + bytesOf(w.const_wrenches) + bytesOf(w.solved) + bytesOf(w.soft_solved);
   return n;
 }
