@@ -19,3 +19,27 @@ if(RIGIDLAB_SANITIZE)
   target_link_options(rigidlab_options INTERFACE -fsanitize=address,undefined)
   target_compile_definitions(rigidlab_options INTERFACE RIGIDLAB_VERIFY_CACHES)
 endif()
+
+# RIGIDLAB_PCH: Eigen and the standard headers that nearly every file of the core, the program and
+# the C++ tests includes (through rigidlab/math.h), parsed once per target instead of once per file.
+# Measured on one core file: 1.6 -> 0.75 s of compile time (error.cpp), 3.3 -> 2.25 s (shape.cpp).
+# A fresh build (CI's three builds) gains; sol2's headers are not precompiled, because a Lua-layer
+# file spends its time instantiating sol2's templates, not parsing them (lua_joint.cpp: 5.5 s either
+# way). Off by default when a compiler launcher such as ccache is set: ccache does not cache files
+# built with a precompiled header unless configured for it, and its cache already spares the work.
+# GCC only (the Release and sanitizer builds): GCC parses the header instead when a precompiled one
+# does not fit, where clang (the fuzz build) stops with an error.
+if(CMAKE_CXX_COMPILER_LAUNCHER OR NOT CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+  set(rigidlab_pch_default OFF)
+else()
+  set(rigidlab_pch_default ON)
+endif()
+option(RIGIDLAB_PCH "Precompile Eigen and the standard headers for rigidlab's own targets" ${rigidlab_pch_default})
+
+# rigidlab_precompile_headers(TARGET [HEADER...]): the list above and the extra headers given.
+function(rigidlab_precompile_headers target)
+  if(RIGIDLAB_PCH)
+    target_precompile_headers(${target} PRIVATE ${ARGN} <Eigen/Core> <algorithm> <cmath> <cstdint> <functional> <memory>
+                              <optional> <string> <string_view> <vector>)
+  endif()
+endfunction()
