@@ -11,6 +11,7 @@
 // ε = 1e-12 of A's largest diagonal entry, which gives the dependent rows bounded multipliers and
 // changes the independent ones by a relative 1e-12.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <numbers>
 
@@ -22,6 +23,12 @@ namespace {
 constexpr double kSingular = 1e-13;  // a pivot this small relative to A's largest diagonal: singular
 constexpr double kShift = 1e-12;     // the regularisation then, relative to that diagonal
 constexpr int kMaxNewton = 24;
+// An iteration that does not cut the error by this factor is not converging as it should: simplified
+// Newton (A and J of an earlier place) is then replaced by Newton's method, and Newton's method by
+// the pins' closure where it applies (project). Simplified Newton's rate is about the drift over the
+// lever arms (1e-7 for a ragdoll's step); a chain's 1e-5 m drift gave 0.24 per iteration, which the
+// test of halving took as converging: 12 more iterations where one Newton step was enough.
+constexpr double kContraction = 0.125;
 
 bool isMoving(const Island& island, uint32_t body) { return body < island.moving; }
 
@@ -35,13 +42,30 @@ double weighted(const Eigen::Vector3d& jr, const Eigen::Vector3d& js, double im,
 void Solver::evaluateRows(const Island& island) {
   const size_t m = island.equalities.size(), n = m + island.motors.size();
   rows_.resize(n);
-  // The structure is each row's moving bodies, in order: when it is the one the factorisation was
-  // set up for, its analysis is kept.
-  signature_now_.clear();
   const Rot* rot = place(island);
+  const bool check = !built_ || island.shape != checked_shape_ || island.shape == 0;
+  if (check) {
+    pin_first_.assign(m, 0);
+    for (size_t k = 0; k + 1 < m; ++k)
+      if (isPinPair(island.equalities[k].coordinate, island.equalities[k + 1].coordinate)) pin_first_[k++] = 1;
+  }
   for (size_t k = 0; k < n; ++k) {
+    if (k < m && pin_first_[k]) {
+      evaluatePin(island.equalities[k].coordinate, island.states.data(), rot, rows_[k], rows_[k + 1]);
+      ++k;
+      continue;
+    }
     const Coordinate& c = k < m ? island.equalities[k].coordinate : island.motors[k - m].coordinate;
-    const Evaluated& r = rows_[k] = evaluate(c, island.states.data(), rot);
+    rows_[k] = evaluate(c, island.states.data(), rot);
+  }
+  use_.resize(n, 1);
+  if (!check) return;
+  // The structure is each row's moving bodies, in order: when it is the one the factorisation was
+  // set up for, its analysis is kept. The rows' bodies change only with the island's shape.
+  checked_shape_ = island.shape;
+  signature_now_.clear();
+  for (size_t k = 0; k < n; ++k) {
+    const Evaluated& r = rows_[k];
     const size_t at = signature_now_.size();
     signature_now_.push_back(0);
     for (int i = 0; i < r.count; ++i)
@@ -50,7 +74,6 @@ void Solver::evaluateRows(const Island& island) {
         ++signature_now_[at];
       }
   }
-  use_.resize(n, 1);
   if (signature_now_ != signature_ || !built_) {
     signature_.swap(signature_now_);
     structure(island);
@@ -63,6 +86,7 @@ void Solver::structure(const Island& island) {
   analysed_ = false;
   shift_ = 0.0;
   used_.clear();
+  factored_shape_ = 0;  // nothing factored for this structure yet
   tree_ = tree_factor_.build(island, rows_);
   if (tree_) return;
   // Per moving body, the rows that act on it (and where it is in each row's Jacobian).
@@ -106,8 +130,30 @@ void Solver::structure(const Island& island) {
   }
 }
 
+bool Solver::factoredHere(const Island& island) {
+  const size_t n = island.states.size();
+  bool same = island.shape != 0 && island.shape == factored_shape_ && factored_at_.size() == 3 * n && used_ == use_;
+  for (size_t k = 0; k < n && same; ++k) {
+    const State& s = island.states[k];
+    same = factored_at_[3 * k] == std::bit_cast<uint64_t>(s.c.x()) &&
+           factored_at_[3 * k + 1] == std::bit_cast<uint64_t>(s.c.y()) &&
+           factored_at_[3 * k + 2] == std::bit_cast<uint64_t>(s.angle);
+  }
+  if (same) return true;
+  factored_shape_ = island.shape;
+  factored_at_.resize(3 * n);
+  for (size_t k = 0; k < n; ++k) {
+    const State& s = island.states[k];
+    factored_at_[3 * k] = std::bit_cast<uint64_t>(s.c.x());
+    factored_at_[3 * k + 1] = std::bit_cast<uint64_t>(s.c.y());
+    factored_at_[3 * k + 2] = std::bit_cast<uint64_t>(s.angle);
+  }
+  return false;
+}
+
 void Solver::factor(const Island& island) {
   const Eigen::Index m = static_cast<Eigen::Index>(rows_.size());
+  if (factoredHere(island)) return;
   used_ = use_;
   if (tree_) {
     tree_factor_.factor(island, rows_, use_);
@@ -344,16 +390,25 @@ void Solver::beginStep(Island& island, double h) {
   motor_push_.assign(island.motors.size(), 0);
   motor_rate_.resize(island.motors.size());
   if (island.motors.empty()) return;
-  evaluateRows(island);
   // A motor off its speed is caught there by one impulse, with the joints and limits holding, if
   // that impulse is within what its force gives in the step (|Λ| ≤ max h, Λ from the whole island:
   // a crank's motor moves its weight about the pin, not about its centre of mass); else it pushes
   // with its whole force. Motors whose catch asks too much push, and the others are caught again.
-  std::vector<int8_t> off_sign(island.motors.size(), 0);
+  // The motors' rows alone first: when every motor is at its speed (most steps of a ragdoll's
+  // joint friction) nothing else is needed.
+  std::vector<int8_t>& off_sign = off_sign_;
+  off_sign.assign(island.motors.size(), 0);
+  bool any_off = false;
+  const Rot* rot = place(island);
   for (size_t q = 0; q < island.motors.size(); ++q) {
-    const double off = island.motors[q].speed - rows_[m + q].xdot;
+    const double xdot = evaluate(island.motors[q].coordinate, island.states.data(), rot).xdot;
+    motor_rate_[q] = xdot - island.motors[q].speed;
+    const double off = island.motors[q].speed - xdot;
     if (std::abs(off) > island.speed_tolerance) off_sign[q] = off > 0.0 ? 1 : -1;
+    any_off |= off_sign[q] != 0;
   }
+  if (!any_off) return;
+  evaluateRows(island);
   start_.assign(island.states.begin(), island.states.end());
   for (size_t round = 0; round <= island.motors.size(); ++round) {
     bool catches = false;
@@ -394,9 +449,9 @@ Projection Solver::project(Island& island, double tolerance) {
   positionRows();
   // A and J at the step's end, kept for the Newton iterations while they converge (simplified
   // Newton: the error after a step's drift falls by a factor of the drift per iteration); when an
-  // iteration does not halve the error (a long step's large drift; a long chain, whose A is
-  // ill-conditioned, corrects a small gap with large motions), A and J are taken again where the
-  // bodies are (Newton's method). A step that would raise the error is shortened (halved up to six
+  // iteration does not cut the error by kContraction (a long step's large drift; a long chain,
+  // whose A is ill-conditioned, corrects a small gap with large motions), A and J are taken again
+  // where the bodies are (Newton's method), or the pins closed (below). A step that would raise the error is shortened (halved up to six
   // times, a backtracking line search: far from the joints the linearisation overshoots); when
   // even that does not lower it, round-off is reached.
   factor(island);
@@ -448,10 +503,27 @@ Projection Solver::project(Island& island, double tolerance) {
       continue;
     }
     ++result.iterations;
-    const bool halved = next < 0.5 * largest;
+    const double previous = largest;
+    const bool fast = next < kContraction * largest;
     largest = next;
     result.residual = largest;
-    if (!halved && largest > tolerance) {
+    // Newton's own step (A and J where the bodies were) did not even halve the error: the gaps are
+    // beyond the region where it converges fast. That region shrinks as ℓ / n² on a chain of n
+    // links of lever ℓ (A's smallest eigenvalue, the chain sliding along itself, falls as 1/n²:
+    // a gap g is closed by moving links ~ n g along the chain, which turns them by ~ n g / ℓ, and
+    // the linearisation's error is ~ (n g)² / ℓ), so a 10 000-link chain's 0.1 mm drift took all of
+    // kMaxNewton iterations and often did not converge. Islands of pins alone are closed exactly
+    // instead, by translations from each tree's root (TreeFactor::closePins): not the projection
+    // in the mass metric, but on the joints to round-off and within O(gap) of where the bodies
+    // were, which keeps the integrator's order as well (Hairer, Lubich, Wanner IV.4: any smooth
+    // projection onto the manifold within O(|g|) does).
+    if (next >= 0.5 * previous && largest > tolerance && fresh && tree_ && tree_factor_.closePins(island, use_, place(island))) {
+      largest = result.residual = largestError(true);
+      ++result.iterations;
+      result.closed = true;
+      break;
+    }
+    if (!fast && largest > tolerance) {
       refactor();  // not converging as simplified Newton: Newton's method from here
       fresh = true;
     } else {
