@@ -238,9 +238,6 @@ class Solver {
   // A = J M⁻¹ Jᵀ over the rows in use_ (a row out of use has A's row and column of the identity,
   // so its λ is its right-hand side, kept 0), factored.
   void factor(const Island& island);
-  // True when the last factorisation was taken at the island's positions with the rows in use_
-  // (then kept); else records them for the one about to be taken.
-  bool factoredHere(const Island& island);
   // Two passes v ← v − M⁻¹ Jᵀ A⁻¹ J v with J where the bodies are and the last factorisation.
   // `evaluated`: rows_ hold J, x and ẋ where the bodies are already.
   void velocityPasses(Island& island, bool evaluated = false);
@@ -255,12 +252,6 @@ class Solver {
   std::vector<uint32_t> signature_, signature_now_;
   bool built_ = false;
   uint64_t checked_shape_ = 0;  // Island::shape of the last structure check
-  // Where the last factorisation was taken: A = J M⁻¹ Jᵀ depends only on the bodies' positions and
-  // angles and the rows in use, so a factorisation asked for again at the same place (bit for bit)
-  // with the same rows is kept (the first stage of a step is where the last step's projection
-  // ended; a motor's catch at the step's start too).
-  uint64_t factored_shape_ = 0;
-  std::vector<uint64_t> factored_at_;
   std::vector<char> pin_first_;   // per equality: the first of a pin pair (isPinPair), checked with the shape
   std::vector<int8_t> off_sign_;  // beginStep's scratch
   struct Entry {
