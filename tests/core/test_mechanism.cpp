@@ -214,3 +214,94 @@ TEST_CASE("exact joints: the tree-ordered factorisation solves J M⁻¹ Jᵀ x =
   rows.push_back(evaluate(island.equalities.back().coordinate, island.states.data(), rot.data()));
   CHECK_FALSE(tree.build(island, rows));
 }
+
+TEST_CASE("exact joints: the pins' closure puts a tree on its pins by translations, and a free tree keeps its centre of mass") {
+  // Random trees of 40 bodies far off their pins (gaps of metres, which Newton's method could not
+  // close from): one held at its root by a fixed body, one held by nothing.
+  using namespace rigidlab::mechanism;
+  uint32_t seed = 777;
+  const auto next = [&] {
+    seed = seed * 1664525u + 1013904223u;
+    return (seed >> 8) * (1.0 / 16777216.0);
+  };
+  constexpr uint32_t kBodies = 40;
+  for (const bool held : {true, false}) {
+    CAPTURE(held);
+    Island island;
+    for (uint32_t k = 0; k < kBodies + 1; ++k) {
+      State s;
+      s.c = Vec2(10.0 * next() - 5.0, 10.0 * next() - 5.0);
+      s.angle = 6.0 * next() - 3.0;
+      island.states.push_back(s);
+      island.im.push_back(k == kBodies ? 0.0 : 0.1 + 10.0 * next());
+      island.ii.push_back(k == kBodies ? 0.0 : 0.1 + 100.0 * next());
+    }
+    island.moving = kBodies;
+    const auto pin = [&](uint32_t a, uint32_t b) {
+      Equality e;
+      e.coordinate.term[0].a = a;
+      e.coordinate.term[0].b = b;
+      e.coordinate.term[0].sa = Vec2(next() - 0.5, next() - 0.5);
+      e.coordinate.term[0].sb = Vec2(next() - 0.5, next() - 0.5);
+      e.coordinate.term[0].measure = Measure::PointX;
+      island.equalities.push_back(e);
+      e.coordinate.term[0].measure = Measure::PointY;
+      island.equalities.push_back(e);
+    };
+    if (held) pin(kBodies, 0);
+    for (uint32_t k = 1; k < kBodies; ++k) pin(static_cast<uint32_t>(next() * k), k);
+    std::vector<Rot> rot;
+    rotationsOf(island.states, rot);
+    std::vector<Evaluated> rows;
+    for (size_t r = 0; r < island.equalities.size(); r += 2) {
+      // A pin's two rows together are what evaluate() gives for each.
+      REQUIRE(isPinPair(island.equalities[r].coordinate, island.equalities[r + 1].coordinate));
+      Evaluated x, y;
+      evaluatePin(island.equalities[r].coordinate, island.states.data(), rot.data(), x, y);
+      for (const auto& [pair, row] : {std::pair{&x, r}, std::pair{&y, r + 1}}) {
+        const Evaluated e = evaluate(island.equalities[row].coordinate, island.states.data(), rot.data());
+        CHECK(pair->x == e.x);
+        CHECK(pair->count == e.count);
+        for (int i = 0; i < e.count; ++i) CHECK((pair->j[i] == e.j[i]));
+        rows.push_back(e);
+      }
+    }
+    TreeFactor tree;
+    REQUIRE(tree.build(island, rows));
+    std::vector<char> use(rows.size(), 1);
+    const std::vector<State> before = island.states;
+    const auto centre = [&] {
+      Vec2 sum = Vec2::Zero();
+      double mass = 0.0;
+      for (uint32_t k = 0; k < kBodies; ++k) {
+        sum += island.states[k].c / island.im[k];
+        mass += 1.0 / island.im[k];
+      }
+      return Vec2(sum / mass);
+    };
+    const Vec2 c0 = centre();
+    double gap0 = 0.0;
+    for (const Evaluated& e : rows) gap0 = std::max(gap0, std::abs(e.x));
+    REQUIRE(gap0 > 1.0);
+    REQUIRE(tree.closePins(island, use, rot.data()));
+    double gap = 0.0;
+    for (const Equality& e : island.equalities)
+      gap = std::max(gap, std::abs(evaluate(e.coordinate, island.states.data(), rot.data()).x));
+    CHECK(gap < 1e-12);
+    for (uint32_t k = 0; k <= kBodies; ++k) CHECK(island.states[k].angle == before[k].angle);
+    CHECK(island.states[kBodies].c == before[kBodies].c);  // the fixed body stays
+    if (!held) CHECK((centre() - c0).norm() < 1e-12);
+    // With a row that is not a pin's in use (an angle between two bodies), nothing moves.
+    Equality angle;
+    angle.coordinate.term[0].measure = Measure::Angle;
+    angle.coordinate.term[0].a = 0;
+    angle.coordinate.term[0].b = 1;
+    island.equalities.push_back(angle);
+    rows.push_back(evaluate(angle.coordinate, island.states.data(), rot.data()));
+    REQUIRE(tree.build(island, rows));
+    use.push_back(1);
+    const std::vector<State> closed = island.states;
+    CHECK_FALSE(tree.closePins(island, use, rot.data()));
+    for (uint32_t k = 0; k < kBodies; ++k) CHECK(island.states[k].c == closed[k].c);
+  }
+}

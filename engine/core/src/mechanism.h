@@ -76,6 +76,10 @@ struct Evaluated {
 // `rotations`: R(θ) of each body at `states` (rotationsOf).
 Evaluated evaluate(const Coordinate& c, const State* states, const Rot* rotations);
 void rotationsOf(const std::vector<State>& states, std::vector<Rot>& out);
+// A pin's x and y rows (isPinPair: point x then point y of one term each, weight 1, the same
+// bodies and anchors) evaluated together: the same values as evaluate() on each, at half the cost.
+bool isPinPair(const Coordinate& x, const Coordinate& y);
+void evaluatePin(const Coordinate& x, const State* states, const Rot* rotations, Evaluated& ex, Evaluated& ey);
 
 // A rigid constraint x = target, or with `sign` ±1 a one-sided one (a joint limit): sign (x − target)
 // ≥ 0, whose force may only push, sign λ ≥ 0. A one-sided row takes part at a stage only while the
@@ -120,6 +124,9 @@ struct Island {
   std::vector<Motor> motors;
   std::vector<Spring> springs;
   double tolerance = 1e-9, speed_tolerance = 1e-9;
+  // Changed by whoever changes the bodies or the rows (mechanism_step.cpp: each time it makes the
+  // island): the solver checks its structure only then.
+  uint64_t shape = 0;
 };
 
 // How a projection went: the largest |g| before it (the step's drift, an estimate of its local
@@ -128,6 +135,7 @@ struct Projection {
   double drift = 0.0;
   double residual = 0.0;
   int iterations = 0;
+  bool closed = false;  // finished by the pins' closure (TreeFactor::closePins), not Newton
 };
 
 // J M⁻¹ Jᵀ of an island whose rows act on at most two moving bodies each and join them in a forest
@@ -149,6 +157,14 @@ class TreeFactor {
   void factor(const Island& island, const std::vector<Evaluated>& rows, const std::vector<char>& use);
   // x = A⁻¹ b over the rows in use of the last factor; a row out of use keeps x = b.
   void solve(const std::vector<Evaluated>& rows, const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  // Puts the island's bodies on its pins by translations alone, in one pass from each tree's root
+  // to its leaves: each body is moved by its pin's gap to its (already placed) parent, a root by
+  // its pin to a fixed body; a tree held by no fixed body is then moved as a whole so that its
+  // centre of mass stays where it was. Exact to round-off, whatever the gaps (a point coordinate is
+  // linear in a body's position). Only for islands whose rows in use (`use`, equalities numbered as
+  // in island.equalities) are pins alone: each group's two point rows of one pin, a group on one
+  // body only at a tree's root; false (nothing moved) otherwise. `rotations`: R(θ) at the states.
+  bool closePins(Island& island, const std::vector<char>& use, const Rot* rotations);
 
  private:
   struct Group {
@@ -156,12 +172,17 @@ class TreeFactor {
     uint32_t first = 0, count = 0;  // its rows: members_[first .. first + count)
     uint32_t at = 0;  // its factors in arena_: L (count²), D⁻¹, u = W̃_up J_upᵀ (3 count), z, P = D⁻¹ uᵀ (3 count)
     uint32_t n = 0;   // rows in use at the last factor (in_use_[first .. first + n))
+    bool root = false;  // on one body that is its tree's root (closePins)
   };
   std::vector<Group> groups_;  // in elimination order
   std::vector<uint32_t> members_, in_use_;
   std::vector<uint8_t> j_up_, j_down_;  // per member: where up and down are in the row's Jacobian
   std::vector<Eigen::Matrix3d> w_;      // per moving body: W̃
   std::vector<Eigen::Vector3d> s_;      // per moving body: the forward and backward sums
+  std::vector<uint32_t> tree_of_;       // per moving body: its tree's root
+  std::vector<char> held_;              // per root (closePins): held by a fixed body
+  std::vector<Vec2> moved_;             // per root (closePins): Σ m Δc, then the shift
+  std::vector<double> tree_mass_;       // per root (closePins)
   std::vector<double> arena_;
 };
 
@@ -230,6 +251,9 @@ class Solver {
   // position in the values of A). Kept while `signature_` (each row's bodies) is unchanged.
   std::vector<uint32_t> signature_, signature_now_;
   bool built_ = false;
+  uint64_t checked_shape_ = 0;  // Island::shape of the last structure check
+  std::vector<char> pin_first_;   // per equality: the first of a pin pair (isPinPair), checked with the shape
+  std::vector<int8_t> off_sign_;  // beginStep's scratch
   struct Entry {
     uint32_t r, s, jr, js;  // rows, and the index of the body in each row's Jacobian
     uint32_t body;

@@ -100,7 +100,43 @@ void add(Evaluated& e, uint32_t body, const Eigen::Vector3d& j) {
   e.j[e.count++] = j;
 }
 
+// A pin's two point terms (the same bodies and anchors) at once: what evaluate() gives for each,
+// with the anchors, their separation and its rates computed once.
+void pinRows(const Term& t, const State* states, const Rot* rotations, Evaluated& ex, Evaluated& ey) {
+  const State& A = states[t.a];
+  const State& B = states[t.b];
+  const Vec2 ra = rotations[t.a].apply(t.sa), rb = rotations[t.b].apply(t.sb);
+  const Vec2 d = (B.c + rb) - (A.c + ra);
+  const Vec2 ddot = B.v + B.w * perp(rb) - A.v - A.w * perp(ra);
+  const Vec2 k = A.w * A.w * ra - B.w * B.w * rb;
+  const auto fill = [&](Evaluated& e, const Vec2& u, double x, double xdot, double jdotv) {
+    // As evaluate() sums its one term of weight 1 into zeros (0 + x: the same bits, −0 made +0).
+    e.x = 0.0 + x;
+    e.xdot = 0.0 + xdot;
+    e.jdotv = 0.0 + jdotv;
+    e.count = 2;
+    e.body[0] = t.a;
+    e.body[1] = t.b;
+    e.j[0] = Eigen::Vector3d(-u.x(), -u.y(), -cross(ra, u));
+    e.j[1] = Eigen::Vector3d(u.x(), u.y(), cross(rb, u));
+  };
+  fill(ex, Vec2(1.0, 0.0), d.x(), ddot.x(), k.x());
+  fill(ey, Vec2(0.0, 1.0), d.y(), ddot.y(), k.y());
+}
+
 }  // namespace
+
+bool isPinPair(const Coordinate& x, const Coordinate& y) {
+  if (x.terms != 1 || y.terms != 1) return false;
+  const Term& a = x.term[0];
+  const Term& b = y.term[0];
+  return a.measure == Measure::PointX && b.measure == Measure::PointY && a.weight == 1.0 && b.weight == 1.0 &&
+         a.a == b.a && a.b == b.b && a.a != a.b && a.sa == b.sa && a.sb == b.sb;
+}
+
+void evaluatePin(const Coordinate& x, const State* states, const Rot* rotations, Evaluated& ex, Evaluated& ey) {
+  pinRows(x.term[0], states, rotations, ex, ey);
+}
 
 void rotationsOf(const std::vector<State>& states, std::vector<Rot>& out) {
   out.resize(states.size());
@@ -109,6 +145,21 @@ void rotationsOf(const std::vector<State>& states, std::vector<Rot>& out) {
 
 Evaluated evaluate(const Coordinate& c, const State* states, const Rot* rotations) {
   Evaluated e;
+  if (c.terms == 1 && c.term[0].weight == 1.0 && c.term[0].a != c.term[0].b) {
+    // One term of weight 1 on two bodies (nearly every row): the sums below without their loops,
+    // the same bits (0 + 1 · x is 0 + x; 1 · j is j).
+    const Term& t = c.term[0];
+    const TermValue v = evaluateTerm(t, states, rotations);
+    e.x = 0.0 + v.x;
+    e.xdot = 0.0 + v.xdot;
+    e.jdotv = 0.0 + v.jdotv;
+    e.count = 2;
+    e.body[0] = t.a;
+    e.body[1] = t.b;
+    e.j[0] = v.ja;
+    e.j[1] = v.jb;
+    return e;
+  }
   for (int k = 0; k < c.terms; ++k) {
     const Term& t = c.term[k];
     const TermValue v = evaluateTerm(t, states, rotations);

@@ -73,6 +73,7 @@ struct MechanismStage {
   std::vector<uint8_t> holds;          // per body slot: how many joints hold it (counted to 2)
   double step_start = 0.0;
   double dt = 0.0;
+  uint64_t shapes = 0;  // the last mechanism::Island::shape given
   // An attempt at an interval (integrateInterval): what to put back when a step drifts too far.
   struct Saved {
     uint32_t slot;
@@ -431,7 +432,8 @@ void project(WorldImpl& w, MechanismStage& m, MechanismStage::Exact& e, double t
   const double tolerance = 0x1p-50 * scale;
   const mechanism::Projection p = e.solver.project(e.island, tolerance);
   e.drift = std::max(e.drift, p.drift / e.size);
-  e.unprojected |= !(p.residual <= std::max(kProjected * e.size, kRoundOff * tolerance));
+  e.unprojected |= !(p.residual <= std::max(kProjected * e.size, kRoundOff * tolerance)) ||
+                   (p.closed && p.drift > kMaxClosedDrift * e.size);
   w.stats.mechanism_newton += p.iterations;
   w.stats.mechanism_residual = std::max(w.stats.mechanism_residual, p.residual);
   for (uint32_t k = 0; k < e.island.moving; ++k) {
@@ -537,6 +539,7 @@ void chooseMechanisms(WorldImpl& w, const StepContext& ctx) {
       e.island.motors.clear();
       e.island.springs.clear();
       e.island.moving = 0;
+      e.island.shape = ++m.shapes;
       e.equality_report.clear();
       e.motor_report.clear();
       e.spring_report.clear();
