@@ -16,9 +16,11 @@
 // The run is marked blown up when the energy it gained from nowhere, summed over the steps,
 //   X = Σ (E_end − E_start − W),
 // exceeds 100 times all the energy the scene ever had to play with:
-//   S = K₀ + U₀ + (V₀ − V_least) + Σ W + Σ edits + Σ_bodies m (½ v_push² + |g| r),
+//   S = K₀ + U₀ + (V₀ − V_least) + Σ W + Σ edits + Σ_steps Σ_bodies ½ m (|g| h)² + Σ_bodies m (½ v_push² + |g| r),
 // where K₀ is the first step's kinetic energy, U₀ what its forces store (springs), V₀ its potential
-// energy, V_least the least potential energy seen (what falling released), and the last term what
+// energy, V_least the least potential energy seen (what falling released), ½ m (|g| h)² what a
+// first-order integrator gains from gravity in a step (explicit Euler in free fall: v grows by g h
+// before x moves, exactly this much a step, a bounded error), and the last term what
 // contacts may give back when they push overlapping bodies apart (at most contact_push_speed,
 // lifting a body by at most its extent r), summed over the bodies that have been in a contact or
 // are jointed (the contact solvers push joint errors apart the same way); a body that touches
