@@ -38,6 +38,14 @@ World springWorld(Integrator integrator, double k, BodyId& ball) {
   return w;
 }
 
+// The same spring without gravity: the ball swings about the spring's rest length alone.
+World weightlessSpring(Integrator integrator, double k) {
+  BodyId ball;
+  World w = springWorld(integrator, k, ball);
+  w.setGravity(Vec2::Zero());
+  return w;
+}
+
 long stepsUntilBlowUp(World& w, long steps) {
   for (long n = 1; n <= steps; ++n) {
     w.step(1.0 / 60.0);
@@ -68,9 +76,7 @@ TEST_CASE("energy watch: a k = 1e7 spring at 1/60 blows up within 8 steps with e
   // A slow blow-up is one too: explicit Euler on k = 1000 N/m (ωh = 0.53) gains 28 % a step, and
   // is reported in a step where the ball's kinetic energy fell (its energy went into the spring).
   {
-    BodyId ball;
-    World w = springWorld(Integrator::ExplicitEuler, 1000, ball);
-    w.setGravity(Vec2::Zero());
+    World w = weightlessSpring(Integrator::ExplicitEuler, 1000);
     const long at = stepsUntilBlowUp(w, 600);
     CHECK(at > 8);
     CHECK(blowUps(w) == 1);
@@ -79,14 +85,11 @@ TEST_CASE("energy watch: a k = 1e7 spring at 1/60 blows up within 8 steps with e
   // ball that touches nothing (no allowance for what contacts give back: energy_watch.h); the same
   // spring under semi-implicit Euler is stable and not reported.
   {
-    BodyId ball;
-    World w = springWorld(Integrator::ExplicitEuler, 36, ball);
-    w.setGravity(Vec2::Zero());
+    World w = weightlessSpring(Integrator::ExplicitEuler, 36);
     const long at = stepsUntilBlowUp(w, 600);
     CHECK(at > 400);
     CHECK(blowUps(w) == 1);
-    World stable = springWorld(Integrator::SemiImplicitEuler, 36, ball);
-    stable.setGravity(Vec2::Zero());
+    World stable = weightlessSpring(Integrator::SemiImplicitEuler, 36);
     CHECK(stepsUntilBlowUp(stable, 600) == -1);
   }
   // Implicit Euler is stable at any stiffness: 10 s, nothing reported.
@@ -97,10 +100,8 @@ TEST_CASE("energy watch: a k = 1e7 spring at 1/60 blows up within 8 steps with e
 
 TEST_CASE("energy watch: stable runs are not blow-ups, whatever their energy swings") {
   // Semi-implicit Euler at ωh = 1.9 is stable; its energy swings up to 1/(1 − (ωh)²/4) ≈ 10× E0.
-  BodyId ball;
   const double omega = 1.9 * 60.0;
-  World w = springWorld(Integrator::SemiImplicitEuler, omega * omega, ball);
-  w.setGravity(Vec2::Zero());
+  World w = weightlessSpring(Integrator::SemiImplicitEuler, omega * omega);
   CHECK(stepsUntilBlowUp(w, 1200) == -1);
   // A pile of ten boxes settling for 10 s with the defaults.
   World pile;

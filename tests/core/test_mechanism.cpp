@@ -26,6 +26,15 @@ BodyId link(World& w, double width, double height, Vec2 position, double mass) {
   return w.createBody(d);
 }
 
+// Numbers in [0, 1) from a linear congruential generator: the same sequence on every platform.
+struct Uniform {
+  uint32_t seed;
+  double operator()() {
+    seed = seed * 1664525u + 1013904223u;
+    return (seed >> 8) * (1.0 / 16777216.0);
+  }
+};
+
 using test::largestGap;
 using test::revolute;
 
@@ -127,11 +136,7 @@ TEST_CASE("exact joints: the tree-ordered factorisation solves J M⁻¹ Jᵀ x =
   // earlier one, with an angle row on some pins (a motor's or a limit's) and a second fixed body
   // holding some by their angle (a grounded group that is not the root's); some rows out of use.
   using namespace rigidlab::mechanism;
-  uint32_t seed = 12345;
-  const auto next = [&] {
-    seed = seed * 1664525u + 1013904223u;
-    return (seed >> 8) * (1.0 / 16777216.0);
-  };
+  Uniform next{12345};
   constexpr uint32_t kBodies = 60;
   Island island;
   for (uint32_t k = 0; k < kBodies + 2; ++k) {
@@ -219,11 +224,7 @@ TEST_CASE("exact joints: the pins' closure puts a tree on its pins by translatio
   // Random trees of 40 bodies far off their pins (gaps of metres, which Newton's method could not
   // close from): one held at its root by a fixed body, one held by nothing.
   using namespace rigidlab::mechanism;
-  uint32_t seed = 777;
-  const auto next = [&] {
-    seed = seed * 1664525u + 1013904223u;
-    return (seed >> 8) * (1.0 / 16777216.0);
-  };
+  Uniform next{777};
   constexpr uint32_t kBodies = 40;
   for (const bool held : {true, false}) {
     CAPTURE(held);
